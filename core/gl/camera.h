@@ -1,0 +1,35 @@
+// Orbit camera around the centre of the scene bounds. Convention: +Y up (glTF); azimuth 0,
+// elevation 0 puts the camera on the +Z side looking toward -Z; azimuth turns
+// counter-clockwise about +Y seen from above (azimuth 90 = camera on +X); elevation raises
+// the camera toward +Y. Distance 0 = automatic framing (the bounding sphere fits the view).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+struct OrbitParams {
+  float azimuth_deg = 30.0f;    // degrees, any value (wrapped)
+  float elevation_deg = 15.0f;  // degrees, [-89, 89]
+  float distance = 0.0f;        // scene units from the bounds centre; 0 = auto; >= 0
+  float fov_deg = 35.0f;        // vertical field of view, degrees, [1, 150]
+  bool ortho = false;           // orthographic: the view height fits the bounding sphere
+};
+
+struct Camera {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};
+  glm::vec3 eye{0.0f};
+  float near_plane = 0.1f;
+  float far_plane = 100.0f;
+  bool ortho = false;
+  int width = 0;
+  int height = 0;
+};
+
+// Throws InputError naming the option (--elevation, --distance, --fov) when out of range.
+Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
+
+}  // namespace sylva

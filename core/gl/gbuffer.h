@@ -1,0 +1,35 @@
+// The G-buffer targets the raster pass can produce, and the images it returns. All images
+// are width x height (after SSAA down-sampling), row 0 at the top.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <string>
+
+namespace sylva {
+
+enum class Target : uint32_t {
+  Color = 1u << 0,     // CV_8UC4 BGRA, sRGB; alpha = coverage (0 background)
+  Normal = 1u << 1,    // CV_32FC3 view-space unit normal (x, y, z), background 0
+  Depth = 1u << 2,     // CV_32FC1 linear view depth (positive distance along -Z), bg 0
+  Position = 1u << 3,  // CV_32FC3 view-space position, background 0
+  Id = 1u << 4,        // CV_32SC1 id (see IdKind), background 0
+  Ka = 1u << 5,        // CV_32FC1 ambient coefficient in [0, 1], background 0
+};
+using TargetMask = uint32_t;
+constexpr TargetMask operator|(Target a, Target b) {
+  return static_cast<TargetMask>(a) | static_cast<TargetMask>(b);
+}
+constexpr TargetMask operator|(TargetMask a, Target b) { return a | static_cast<TargetMask>(b); }
+constexpr bool has(TargetMask m, Target t) { return (m & static_cast<TargetMask>(t)) != 0; }
+const char* target_name(Target t);  // "color", "normal", ...
+int target_count(TargetMask m);
+
+enum class IdKind { Primitive, Cluster, Object };  // Object = mesh index + 1
+
+struct GBuffer {
+  TargetMask targets = 0;
+  cv::Mat color, normal, depth, position, id, ka;
+};
+
+}  // namespace sylva

@@ -1,0 +1,47 @@
+// The raster pass: one indexed draw per mesh into a framebuffer with only the requested
+// targets attached (MRT). Colour is Luft et al. Eq. 1 local illumination: ambient * ka +
+// sum over lights of diffuse + specular, with ka decoded from the normal's length and the
+// normal re-normalised in the vertex shader. Leaves are drawn double-sided (normal flipped
+// with gl_FrontFacing); alpha-MASK materials discard fragments below the cutoff from the
+// base-colour texture's alpha, so every target follows the leaf shape. SSAA renders at
+// ssaa x size and down-samples per kind (average colour/normal/depth/position/ka, nearest
+// for ids).
+#pragma once
+
+#include <memory>
+
+#include "core/gl/camera.h"
+#include "core/gl/gbuffer.h"
+#include "core/gl/gl_context.h"
+#include "core/gl/lights.h"
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+struct RasterRequest {
+  TargetMask targets = static_cast<TargetMask>(Target::Color);
+  IdKind id_kind = IdKind::Primitive;
+  int ssaa = 1;                        // supersampling factor per axis, [1, 4]
+  glm::vec4 background{1, 1, 1, 0};    // colour target clear, linear RGBA
+};
+
+class Rasterizer {
+ public:
+  explicit Rasterizer(GlContext& context);
+  ~Rasterizer();
+  Rasterizer(const Rasterizer&) = delete;
+  Rasterizer& operator=(const Rasterizer&) = delete;
+
+  // Uploads geometry, ids and textures. Call again when the scene changes.
+  void upload(const Scene& scene);
+  GBuffer render(const Camera& camera, const Lighting& lighting, const RasterRequest& request);
+
+  // Targets allocated by the most recent render (for tests of the render graph's culling).
+  TargetMask last_allocated_targets() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace sylva

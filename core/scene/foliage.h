@@ -1,0 +1,19 @@
+// Foliage detection: which triangles are leaves. Rules, in order: an explicit --foliage
+// value ("none", "all", or a case-insensitive glob on material/mesh names); else material or
+// mesh names containing leaf/leaves/foliage/needle (case-insensitive); else meshes whose
+// material is alpha MASK. Everything else is wood if named like bark/trunk/branch/wood/stem,
+// ground if named ground/terrain/soil, other otherwise. Writes Scene::report.foliage_*.
+#pragma once
+
+#include <string>
+
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+void classify_roles(Scene& scene, const std::string& foliage_option);
+
+// Case-insensitive glob with * and ?.
+bool glob_match(const std::string& pattern, const std::string& text);
+
+}  // namespace sylva

@@ -1,0 +1,26 @@
+// Loading a scene file into the scene model: dispatch on the extension (.gltf/.glb via
+// tinygltf, .obj/.ply/.off/.stl via OpenMesh), validate (NaN/Inf, index ranges), drop
+// zero-area and degenerate triangles (counted in the report), classify roles (foliage.h),
+// and assign primitive ids (components.h). Cluster ids are set to 1 here and assigned
+// properly by npr/leaf_clusters.h. Bad input throws InputError naming the file.
+#pragma once
+
+#include <string>
+
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+struct LoadOptions {
+  // "auto" (name match, else alpha-MASK materials), "none", "all", or a glob matched
+  // case-insensitively against material and mesh names ("*leaf*", "fern_0?").
+  std::string foliage = "auto";
+};
+
+Scene load_scene(const std::string& path, const LoadOptions& options = {});
+
+// The part of load_scene after parsing, for scenes built in memory (samples, tests):
+// validation, degenerate removal, roles (unless keep_roles), primitive ids, cluster ids = 1.
+void finish_scene(Scene& scene, const LoadOptions& options, bool keep_roles = false);
+
+}  // namespace sylva

@@ -1,0 +1,70 @@
+#include "core/scene/scene.h"
+
+#include <algorithm>
+
+namespace sylva {
+
+const char* role_name(Role r) {
+  switch (r) {
+    case Role::Foliage: return "foliage";
+    case Role::Wood: return "wood";
+    case Role::Ground: return "ground";
+    case Role::Other: return "other";
+  }
+  return "other";
+}
+
+const char* alpha_mode_name(AlphaMode m) {
+  switch (m) {
+    case AlphaMode::Opaque: return "OPAQUE";
+    case AlphaMode::Mask: return "MASK";
+    case AlphaMode::Blend: return "BLEND";
+  }
+  return "OPAQUE";
+}
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const Mesh& m : meshes)
+    for (uint32_t i : m.indices) b.extend(m.positions[i]);
+  return b;
+}
+
+Bounds Scene::bounds(Role role) const {
+  Bounds b;
+  for (const Mesh& m : meshes) {
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      if (m.roles[t] != role) continue;
+      for (int k = 0; k < 3; ++k) b.extend(m.positions[m.indices[3 * t + k]]);
+    }
+  }
+  return b;
+}
+
+size_t Scene::triangle_count() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes) n += m.triangle_count();
+  return n;
+}
+
+size_t Scene::vertex_count() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes) n += m.positions.size();
+  return n;
+}
+
+uint32_t Scene::max_primitive_id() const {
+  uint32_t n = 0;
+  for (const Mesh& m : meshes)
+    for (uint32_t id : m.primitive_ids) n = std::max(n, id);
+  return n;
+}
+
+uint32_t Scene::max_cluster_id() const {
+  uint32_t n = 0;
+  for (const Mesh& m : meshes)
+    for (uint32_t id : m.cluster_ids) n = std::max(n, id);
+  return n;
+}
+
+}  // namespace sylva

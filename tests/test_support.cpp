@@ -1,0 +1,79 @@
+#include "tests/test_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace sylva::test {
+
+std::string shared_dir() { return SYLVA_SHARED_DIR; }
+std::string source_dir() { return SYLVA_SOURCE_DIR; }
+std::string fern_path() { return shared_dir() + "/assets/polyhaven_fern_02.glb"; }
+std::string sylva_binary() { return SYLVA_BINARY; }
+
+namespace {
+struct TempRoot {
+  fs::path root;
+  TempRoot() {
+    std::string tmpl = (fs::temp_directory_path() / "sylva-test-XXXXXX").string();
+    std::vector<char> buf(tmpl.begin(), tmpl.end());
+    buf.push_back('\0');
+    if (!mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed");
+    root = buf.data();
+  }
+  ~TempRoot() {
+    std::error_code ec;
+    if (!std::getenv("SYLVA_KEEP_TEST_FILES")) fs::remove_all(root, ec);
+  }
+};
+TempRoot& temp_root() {
+  static TempRoot r;
+  return r;
+}
+}  // namespace
+
+std::string temp_dir(const std::string& tag) {
+  static int counter = 0;
+  fs::path p = temp_root().root / (tag + "-" + std::to_string(counter++));
+  fs::create_directories(p);
+  return p.string();
+}
+
+RunResult run_sylva(const std::string& args) {
+  std::string cmd = sylva_binary() + " " + args + " 2>&1";
+  RunResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed");
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+}
+
+bool file_exists(const std::string& path) { return fs::exists(path); }
+
+}  // namespace sylva::test
