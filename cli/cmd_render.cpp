@@ -1,1 +1,202 @@
-// placeholder until implemented
+// sylva render SCENE [--style S] [view options] [--graph G.dot] -o OUT.png
+// sylva buffers SCENE --out-dir DIR [--buffers color,normal,...] [--id KIND] [view options]
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/common_options.h"
+#include "core/error.h"
+#include "core/gl/raster_pass.h"
+#include "core/io/atomic_file.h"
+#include "core/io/image_io.h"
+#include "styles/style.h"
+
+namespace fs = std::filesystem;
+
+namespace sylva::cli {
+
+void check_output_path(const std::string& option, const std::string& path,
+                       const std::vector<std::string>& extensions) {
+  fs::path p(path);
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  bool ok = false;
+  std::string allowed;
+  for (const std::string& e : extensions) {
+    ok = ok || e == ext;
+    allowed += (allowed.empty() ? "" : ", ") + e;
+  }
+  if (!ok) throw InputError(option, "'" + path + "' must end in " + allowed);
+  fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw InputError(option, "folder of '" + path + "' does not exist");
+}
+
+namespace {
+
+// Everything a frame needs: the loaded scene, a GL context and an uploaded rasteriser.
+struct Frame {
+  Scene scene;
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<Rasterizer> rasterizer;
+  RasterSetup setup;
+};
+
+std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
+  resolve_view_options(vo);
+  auto f = std::make_unique<Frame>();
+  f->scene = load_scene_for_cli(so);
+  f->setup.camera = make_orbit_camera(f->scene.bounds(), vo.orbit, vo.width, vo.height);
+  f->context = create_gl_context();
+  f->rasterizer = std::make_unique<Rasterizer>(*f->context);
+  f->rasterizer->upload(f->scene);
+  f->setup.rasterizer = f->rasterizer.get();
+  f->setup.lighting = lighting_for(vo);
+  f->setup.request = raster_request(vo);
+  return f;
+}
+
+void write_graph(const std::string& path, const RenderGraph& graph) {
+  if (!path.empty()) write_file_atomic(path, graph.to_dot());
+}
+
+std::string camera_json(const Camera& c) {
+  auto mat = [](const glm::mat4& m) {
+    nlohmann::json rows = nlohmann::json::array();  // row-major: rows[i][j] = m[j][i]
+    for (int i = 0; i < 4; ++i) rows.push_back({m[0][i], m[1][i], m[2][i], m[3][i]});
+    return rows;
+  };
+  nlohmann::json j = {{"width", c.width},         {"height", c.height},
+                      {"near", c.near_plane},     {"far", c.far_plane},
+                      {"orthographic", c.ortho},  {"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                      {"view", mat(c.view)},      {"projection", mat(c.proj)},
+                      {"matrix_layout", "row-major, column vectors: p_view = view * p_world"}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+Action add_render_command(CLI::App& app) {
+  struct Opts {
+    SceneOptions scene;
+    ViewOptions view;
+    std::string style = "standard";
+    std::string out, graph;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene in a style to an image");
+  add_scene_options(*cmd, o->scene);
+  add_view_options(*cmd, o->view);
+  cmd->add_option("--style", o->style, "Style name (see the README)")->capture_default_str();
+  cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
+  cmd->add_option("-o,--output", o->out, "Output image (.png or .jpg)")->required();
+  return [o] {
+    const StyleInfo& style = find_style(o->style);
+    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg"});
+    if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
+    auto frame = prepare_frame(o->scene, o->view);
+    RenderGraph graph;
+    GBufferHandles gb = add_raster_pass(graph, frame->setup);
+    int out = style.build(graph, gb);
+    graph.present(out);
+    graph.compile();
+    write_graph(o->graph, graph);
+    graph.execute();
+    cv::Mat image = graph.get<cv::Mat>(out);
+    if (o->out.ends_with(".jpg") || o->out.ends_with(".jpeg")) {
+      cv::Mat bgr;
+      cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+      image = bgr;
+    }
+    write_image(o->out, image);
+    std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
+                style.name.c_str());
+  };
+}
+
+Action add_buffers_command(CLI::App& app) {
+  struct Opts {
+    SceneOptions scene;
+    ViewOptions view;
+    std::string dir, list = "color,normal,depth,position,id,ka", graph;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = app.add_subcommand(
+      "buffers", "Write the G-buffers (lossless TIFF/PNG), camera.json and 8-bit previews");
+  add_scene_options(*cmd, o->scene);
+  add_view_options(*cmd, o->view);
+  cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")
+      ->required();
+  cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka")
+      ->capture_default_str();
+  cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")
+      ->capture_default_str();
+  cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
+  return [o] {
+    TargetMask wanted = 0;
+    std::stringstream ss(o->list);
+    for (std::string name; std::getline(ss, name, ',');) {
+      bool found = false;
+      for (Target t : kAllTargets)
+        if (name == target_name(t)) {
+          wanted |= static_cast<TargetMask>(t);
+          found = true;
+        }
+      if (!found)
+        throw InputError("--buffers", "unknown buffer '" + name +
+                                          "' (allowed: color, normal, depth, position, id, ka)");
+    }
+    if (wanted == 0) throw InputError("--buffers", "name at least one buffer");
+    fs::path dir(o->dir);
+    std::error_code ec;
+    fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
+      throw InputError("--out-dir", "'" + o->dir + "': parent folder does not exist");
+    if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
+    auto frame = prepare_frame(o->scene, o->view);
+    RenderGraph graph;
+    GBufferHandles gb = add_raster_pass(graph, frame->setup);
+    for (Target t : kAllTargets)
+      if (has(wanted, t)) graph.present(gb.of(t));
+    graph.compile();
+    graph.execute();
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError("--out-dir", "cannot create '" + o->dir + "': " + ec.message());
+    write_graph(o->graph, graph);
+    auto path = [&](const std::string& name) { return (dir / name).string(); };
+    for (Target t : kAllTargets) {
+      if (!has(wanted, t)) continue;
+      const cv::Mat& m = graph.get<cv::Mat>(gb.of(t));
+      std::string name = target_name(t);
+      if (t == Target::Color) {
+        write_image(path("color.png"), m);
+        continue;
+      }
+      cv::Mat file = m, preview;
+      if (t == Target::Id) {
+        m.convertTo(file, CV_32F);  // exact for ids below 2^24
+        preview = preview_ids(m);
+      } else if (t == Target::Normal) {
+        preview = preview_normal(m);
+      } else if (t == Target::Position) {
+        preview = preview_position(m);
+      } else if (t == Target::Depth) {
+        preview = preview_depth(m);
+      } else {
+        preview = preview_scalar(m);
+      }
+      write_image(path(name + ".tiff"), file);
+      write_image(path(name + ".preview.png"), preview);
+    }
+    write_file_atomic(path("camera.json"), camera_json(frame->setup.camera));
+    std::printf("wrote %s buffers to %s\n", o->list.c_str(), o->dir.c_str());
+  };
+}
+
+}  // namespace sylva::cli

@@ -1,1 +1,116 @@
-// placeholder until implemented
+#include "cli/common_options.h"
+
+#include <cmath>
+#include <regex>
+
+#include "core/error.h"
+#include "core/scene/load.h"
+#include "npr/leaf_clusters.h"
+
+namespace sylva::cli {
+
+void add_scene_options(CLI::App& cmd, SceneOptions& o) {
+  cmd.add_option("scene", o.path, "Scene file: .glb, .gltf, .obj, .ply, .off or .stl")
+      ->required();
+  cmd.add_option("--foliage", o.foliage,
+                 "Which triangles are leaves: auto (names leaf/leaves/foliage/needle, else "
+                 "alpha-MASK materials), none, all, or a glob on material/mesh names")
+      ->capture_default_str();
+  cmd.add_option("--clusters", o.clusters,
+                 "Leaf clusters for k-means when the model has no hierarchy; 0 = auto, "
+                 "[0, 4096]")
+      ->capture_default_str();
+  cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")
+      ->capture_default_str();
+}
+
+Scene load_scene_for_cli(const SceneOptions& o) {
+  LoadOptions lo;
+  lo.foliage = o.foliage;
+  Scene scene = load_scene(o.path, lo);
+  ClusterOptions co;
+  co.clusters = o.clusters;
+  co.seed = o.seed;
+  assign_clusters(scene, co);
+  return scene;
+}
+
+void add_view_options(CLI::App& cmd, ViewOptions& o) {
+  cmd.add_option("--size", o.size, "Image size in pixels, WxH or N, each in [1, 16384]")
+      ->capture_default_str();
+  cmd.add_option("--azimuth", o.orbit.azimuth_deg,
+                 "Camera azimuth in degrees, counter-clockwise about +Y seen from above; 0 = "
+                 "on the +Z side")
+      ->capture_default_str();
+  cmd.add_option("--elevation", o.orbit.elevation_deg, "Camera elevation in degrees, [-89, 89]")
+      ->capture_default_str();
+  cmd.add_option("--distance", o.orbit.distance,
+                 "Camera distance from the bounds centre in scene units; 0 = fit the scene")
+      ->capture_default_str();
+  cmd.add_option("--fov", o.orbit.fov_deg, "Vertical field of view in degrees, [1, 150]")
+      ->capture_default_str();
+  cmd.add_flag("--ortho", o.orbit.ortho, "Orthographic projection");
+  cmd.add_option("--ssaa", o.ssaa, "Supersampling factor per axis, [1, 4]")->capture_default_str();
+  cmd.add_option("--background", o.background, "white, black, transparent or #RRGGBB")
+      ->capture_default_str();
+  cmd.add_option("--ambient", o.ambient, "Ambient light intensity, [0, 1]")->capture_default_str();
+}
+
+void parse_size(const std::string& s, int& width, int& height) {
+  static const std::regex re(R"(^\s*(\d{1,6})\s*(?:[xX]\s*(\d{1,6}))?\s*$)");
+  std::smatch m;
+  if (!std::regex_match(s, m, re))
+    throw InputError("--size", "expected WxH or N in pixels, got '" + s + "'");
+  width = std::stoi(m[1]);
+  height = m[2].matched ? std::stoi(m[2]) : width;
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError("--size", "each side must be in [1, 16384] pixels, got '" + s + "'");
+}
+
+glm::vec4 parse_background(const std::string& s) {
+  if (s == "white") return {1, 1, 1, 1};
+  if (s == "black") return {0, 0, 0, 1};
+  if (s == "transparent") return {1, 1, 1, 0};
+  static const std::regex re("^#([0-9a-fA-F]{6})$");
+  if (!std::regex_match(s, re))
+    throw InputError("--background",
+                     "expected white, black, transparent or #RRGGBB, got '" + s + "'");
+  unsigned v = std::stoul(s.substr(1), nullptr, 16);
+  auto lin = [](unsigned c) {  // sRGB to linear, so '#808080' means the grey the user sees
+    float x = c / 255.0f;
+    return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+  };
+  return {lin((v >> 16) & 255), lin((v >> 8) & 255), lin(v & 255), 1.0f};
+}
+
+void resolve_view_options(ViewOptions& o) {
+  parse_size(o.size, o.width, o.height);
+  if (o.ssaa < 1 || o.ssaa > 4)
+    throw InputError("--ssaa", "must be in [1, 4], got " + std::to_string(o.ssaa));
+  if (static_cast<long long>(o.width) * o.ssaa > 16384 ||
+      static_cast<long long>(o.height) * o.ssaa > 16384)
+    throw InputError("--ssaa", "size x ssaa must stay within 16384 pixels per side");
+  if (!(o.ambient >= 0.0f && o.ambient <= 1.0f))
+    throw InputError("--ambient", "must be in [0, 1]");
+  parse_background(o.background);
+  if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object")
+    throw InputError("--id", "expected primitive, cluster or object, got '" + o.id_kind + "'");
+}
+
+RasterRequest raster_request(const ViewOptions& o) {
+  RasterRequest r;
+  r.ssaa = o.ssaa;
+  r.background = parse_background(o.background);
+  r.id_kind = o.id_kind == "cluster"  ? IdKind::Cluster
+              : o.id_kind == "object" ? IdKind::Object
+                                      : IdKind::Primitive;
+  return r;
+}
+
+Lighting lighting_for(const ViewOptions& o) {
+  Lighting l = Lighting::three_point();
+  l.ambient = o.ambient;
+  return l;
+}
+
+}  // namespace sylva::cli

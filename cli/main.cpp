@@ -1,1 +1,52 @@
-int main() { return 0; }
+// sylva: renders 3D plants as non-photorealistic illustrations. Bad input prints one line
+// "sylva: error: <where>: <what>" and exits with status 2; nothing is written then.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "sylva: non-photorealistic illustrations of 3D plants and trees.\n"
+      "Run 'sylva <command> --help' for a command's options."};
+  app.set_version_flag("--version", "sylva 0.1.0");
+  app.require_subcommand(1);
+  std::map<CLI::App*, sylva::cli::Action> actions;
+  auto reg = [&](sylva::cli::Action (*add)(CLI::App&)) {
+    size_t before = app.get_subcommands({}).size();
+    sylva::cli::Action a = add(app);
+    actions[app.get_subcommands({})[before]] = a;
+  };
+  reg(&sylva::cli::add_sample_command);
+  reg(&sylva::cli::add_info_command);
+  reg(&sylva::cli::add_render_command);
+  reg(&sylva::cli::add_buffers_command);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "sylva: error: %s (see 'sylva --help')\n", msg.c_str());
+    return 2;
+  }
+  try {
+    for (CLI::App* sub : app.get_subcommands()) actions.at(sub)();
+  } catch (const sylva::InputError& e) {
+    std::fprintf(stderr, "sylva: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sylva: failed: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,1 +1,76 @@
-// placeholder until implemented
+#include "core/gl/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr float kMargin = 1.05f;      // the framed sphere is this much larger than the bounds'
+constexpr int kMaxImageSide = 16384;  // pixels
+
+void validate(const OrbitParams& p, int width, int height) {
+  if (!std::isfinite(p.azimuth_deg)) throw InputError("--azimuth", "must be a finite number");
+  if (!(p.elevation_deg >= -89.0f && p.elevation_deg <= 89.0f)) {
+    throw InputError("--elevation", "must be in [-89, 89] degrees");
+  }
+  if (!(p.fov_deg >= 1.0f && p.fov_deg <= 150.0f)) {
+    throw InputError("--fov", "must be in [1, 150] degrees");
+  }
+  if (!(std::isfinite(p.distance) && p.distance >= 0.0f)) {
+    throw InputError("--distance", "must be 0 (automatic) or a positive distance");
+  }
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
+    throw InputError(
+        "--size", "width and height must be in [1, " + std::to_string(kMaxImageSide) + "] pixels");
+  }
+}
+
+}  // namespace
+
+Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height) {
+  validate(params, width, height);
+  if (bounds.empty()) throw InputError("scene", "no geometry");
+
+  const glm::vec3 centre = bounds.center();
+  // A single point has no extent; give it one so the projection stays well-defined.
+  const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f * (1.0f + glm::length(centre)));
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float half_vfov = glm::radians(params.fov_deg) * 0.5f;
+  const float half_hfov = std::atan(std::tan(half_vfov) * aspect);
+
+  // The sphere's silhouette is a cone of half-angle asin(r / d) around the view axis: it fits
+  // when that angle is within both half fields of view.
+  float distance = params.distance;
+  if (distance == 0.0f) distance = radius * kMargin / std::sin(std::min(half_vfov, half_hfov));
+
+  const float az = glm::radians(params.azimuth_deg);
+  const float el = glm::radians(params.elevation_deg);
+  const glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+
+  Camera cam;
+  cam.width = width;
+  cam.height = height;
+  cam.ortho = params.ortho;
+  cam.eye = centre + distance * dir;
+  cam.view = glm::lookAt(cam.eye, centre, glm::vec3(0.0f, 1.0f, 0.0f));
+  // Near/far hug the bounding sphere; when the eye is inside it, near is kept at 1/1000 of
+  // far so the 32-bit float depth buffer keeps its precision.
+  cam.far_plane = distance + radius * kMargin;
+  cam.near_plane = std::max(distance - radius * kMargin, cam.far_plane * 1e-3f);
+  if (params.ortho) {
+    // The sphere fits both the height and the width (portrait images too).
+    const float half_h = radius * kMargin * std::max(1.0f, 1.0f / aspect);
+    const float half_w = half_h * aspect;
+    cam.proj = glm::ortho(-half_w, half_w, -half_h, half_h, cam.near_plane, cam.far_plane);
+  } else {
+    cam.proj = glm::perspective(2.0f * half_vfov, aspect, cam.near_plane, cam.far_plane);
+  }
+  return cam;
+}
+
+}  // namespace sylva

@@ -20,10 +20,19 @@ using TargetMask = uint32_t;
 constexpr TargetMask operator|(Target a, Target b) {
   return static_cast<TargetMask>(a) | static_cast<TargetMask>(b);
 }
-constexpr TargetMask operator|(TargetMask a, Target b) { return a | static_cast<TargetMask>(b); }
-constexpr bool has(TargetMask m, Target t) { return (m & static_cast<TargetMask>(t)) != 0; }
+constexpr TargetMask operator|(TargetMask a, Target b) {
+  return a | static_cast<TargetMask>(b);
+}
+constexpr bool has(TargetMask m, Target t) {
+  return (m & static_cast<TargetMask>(t)) != 0;
+}
 const char* target_name(Target t);  // "color", "normal", ...
 int target_count(TargetMask m);
+
+// Every target, in bit order (also the raster pass's colour-attachment slot order).
+inline constexpr Target kAllTargets[] = {Target::Color,    Target::Normal, Target::Depth,
+                                         Target::Position, Target::Id,     Target::Ka};
+inline constexpr TargetMask kAllTargetsMask = (1u << 6) - 1u;
 
 enum class IdKind { Primitive, Cluster, Object };  // Object = mesh index + 1
 
@@ -31,5 +40,9 @@ struct GBuffer {
   TargetMask targets = 0;
   cv::Mat color, normal, depth, position, id, ka;
 };
+
+// The image of one target (empty when it was not rendered).
+cv::Mat& target_image(GBuffer& buffer, Target t);
+const cv::Mat& target_image(const GBuffer& buffer, Target t);
 
 }  // namespace sylva

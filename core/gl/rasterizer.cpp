@@ -1,1 +1,449 @@
-// placeholder until implemented
+#include "core/gl/rasterizer.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/gl/downsample.h"
+#include "core/gl/shaders.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr int kSlots = 6;  // colour attachments, one per Target in kAllTargets order
+
+// Attachment formats: colour is sRGB-encoded by the shader into plain RGBA8 (so blending
+// and SSAA see the stored bytes); normals need ~1e-3 precision only (RGBA16F); depth,
+// position and ka stay 32-bit float; ids are 32-bit unsigned.
+struct SlotFormat {
+  GLenum internal_format;
+  GLenum read_format;
+  GLenum read_type;
+  int cv_type;
+};
+
+SlotFormat slot_format(Target t) {
+  switch (t) {
+    case Target::Color:
+      return {GL_RGBA8, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4};
+    case Target::Normal:
+      return {GL_RGBA16F, GL_RGB, GL_FLOAT, CV_32FC3};
+    case Target::Depth:
+      return {GL_R32F, GL_RED, GL_FLOAT, CV_32FC1};
+    case Target::Position:
+      return {GL_RGBA32F, GL_RGB, GL_FLOAT, CV_32FC3};
+    case Target::Id:
+      return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1};
+    case Target::Ka:
+      return {GL_R32F, GL_RED, GL_FLOAT, CV_32FC1};
+  }
+  SYLVA_CHECK(false, "unknown target");
+}
+
+float srgb_encode(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+struct GpuMesh {
+  GLuint vao = 0;
+  std::vector<GLuint> buffers;
+  GLsizei index_count = 0;
+  int material = -1;
+  uint32_t object_id = 0;
+  bool has_normals = false;
+};
+
+template <typename T>
+GLuint make_buffer(const std::vector<T>& data) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), 0);
+  return buffer;
+}
+
+void check_array(size_t size, size_t expected, const Mesh& mesh, const char* what) {
+  if (size != 0 && size != expected) {
+    throw InputError("mesh '" + mesh.name + "'", std::string(what) + " has " +
+                                                     std::to_string(size) + " entries, expected " +
+                                                     std::to_string(expected));
+  }
+}
+
+// A vertex belongs to one connected component, so the ids of any triangle using it are
+// the vertex's ids; the last triangle wins.
+GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
+  const size_t nv = mesh.positions.size();
+  const size_t nt = mesh.triangle_count();
+  check_array(mesh.normals.size(), nv, mesh, "normals");
+  check_array(mesh.uvs.size(), nv, mesh, "uvs");
+  check_array(mesh.colors.size(), nv, mesh, "colors");
+  check_array(mesh.primitive_ids.size(), nt, mesh, "primitive_ids");
+  check_array(mesh.cluster_ids.size(), nt, mesh, "cluster_ids");
+  check_array(mesh.roles.size(), nt, mesh, "roles");
+
+  std::vector<uint32_t> ids(nv * 2, 0);
+  std::vector<uint8_t> roles(nv, static_cast<uint8_t>(Role::Other));
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t prim = mesh.primitive_ids.empty() ? 0 : mesh.primitive_ids[t];
+    const uint32_t cluster = mesh.cluster_ids.empty() ? 0 : mesh.cluster_ids[t];
+    const auto role = static_cast<uint8_t>(mesh.roles.empty() ? Role::Other : mesh.roles[t]);
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = mesh.indices[3 * t + k];
+      if (v >= nv) throw InputError("mesh '" + mesh.name + "'", "vertex index out of range");
+      ids[2 * v] = prim;
+      ids[2 * v + 1] = cluster;
+      roles[v] = role;
+    }
+  }
+
+  GpuMesh g;
+  g.material = mesh.material;
+  g.object_id = object_id;
+  g.index_count = static_cast<GLsizei>(nt * 3);
+  g.has_normals = !mesh.normals.empty();
+  glCreateVertexArrays(1, &g.vao);
+  auto attach = [&](GLuint buffer, GLuint location, GLint size, GLenum type, GLsizei stride,
+                    bool integer) {
+    g.buffers.push_back(buffer);
+    glVertexArrayVertexBuffer(g.vao, location, buffer, 0, stride);
+    if (integer) {
+      glVertexArrayAttribIFormat(g.vao, location, size, type, 0);
+    } else {
+      glVertexArrayAttribFormat(g.vao, location, size, type, GL_FALSE, 0);
+    }
+    glVertexArrayAttribBinding(g.vao, location, location);
+    glEnableVertexArrayAttrib(g.vao, location);
+  };
+  attach(make_buffer(mesh.positions), kAttribPosition, 3, GL_FLOAT, sizeof(glm::vec3), false);
+  if (!mesh.normals.empty()) {
+    attach(make_buffer(mesh.normals), kAttribNormal, 3, GL_FLOAT, sizeof(glm::vec3), false);
+  }
+  if (!mesh.uvs.empty()) {
+    attach(make_buffer(mesh.uvs), kAttribUv, 2, GL_FLOAT, sizeof(glm::vec2), false);
+  }
+  if (!mesh.colors.empty()) {
+    attach(make_buffer(mesh.colors), kAttribColor, 4, GL_FLOAT, sizeof(glm::vec4), false);
+  }
+  attach(make_buffer(ids), kAttribIds, 2, GL_UNSIGNED_INT, 2 * sizeof(uint32_t), true);
+  attach(make_buffer(roles), kAttribRole, 1, GL_UNSIGNED_BYTE, 1, true);
+  const GLuint index_buffer = make_buffer(mesh.indices);
+  g.buffers.push_back(index_buffer);
+  glVertexArrayElementBuffer(g.vao, index_buffer);
+  return g;
+}
+
+GLuint upload_texture(const Texture& tex) {
+  if (tex.width < 1 || tex.height < 1 ||
+      tex.rgba.size() != static_cast<size_t>(tex.width) * tex.height * 4) {
+    throw InputError("texture '" + tex.name + "'", "pixel data does not match its size");
+  }
+  int levels = 1;
+  while ((std::max(tex.width, tex.height) >> levels) > 0)
+    ++levels;
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, tex.width, tex.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Rows go in top first: GL's t = 0 is then the image top, which is glTF's v = 0.
+  glTextureSubImage2D(id, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      tex.rgba.data());
+  glGenerateTextureMipmap(id);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return id;
+}
+
+// Meshes without a material: grey, and double-sided because untextured plant meshes
+// (OBJ/PLY leaves) rarely have consistent winding.
+Material default_material() {
+  Material m;
+  m.name = "default";
+  m.base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  m.double_sided = true;
+  return m;
+}
+
+}  // namespace
+
+struct Rasterizer::Impl {
+  GlContext& context;
+  std::vector<GpuMesh> meshes;
+  std::vector<GLuint> textures;
+  std::vector<Material> materials;
+  std::map<TargetMask, RasterProgram> programs;
+  GLuint fbo = 0;
+  GLuint depth_texture = 0;
+  std::array<GLuint, kSlots> slot_textures{};
+  int fbo_width = 0, fbo_height = 0;
+  TargetMask fbo_targets = 0;
+
+  explicit Impl(GlContext& c) : context(c) {}
+
+  void release_scene() {
+    for (GpuMesh& m : meshes) {
+      glDeleteVertexArrays(1, &m.vao);
+      glDeleteBuffers(static_cast<GLsizei>(m.buffers.size()), m.buffers.data());
+    }
+    meshes.clear();
+    if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
+    textures.clear();
+    materials.clear();
+  }
+
+  void release_fbo() {
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+    if (depth_texture) glDeleteTextures(1, &depth_texture);
+    for (GLuint& t : slot_textures) {
+      if (t) glDeleteTextures(1, &t);
+      t = 0;
+    }
+    fbo = depth_texture = 0;
+    fbo_width = fbo_height = 0;
+    fbo_targets = 0;
+  }
+
+  const RasterProgram& program(TargetMask targets) {
+    auto it = programs.find(targets);
+    if (it == programs.end()) it = programs.emplace(targets, make_raster_program(targets)).first;
+    return it->second;
+  }
+
+  // Only the requested targets are attached; the FBO is rebuilt when size or targets change.
+  void ensure_fbo(int width, int height, TargetMask targets) {
+    if (fbo && width == fbo_width && height == fbo_height && targets == fbo_targets) return;
+    release_fbo();
+    glCreateFramebuffers(1, &fbo);
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
+    glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, width, height);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_texture, 0);
+    std::array<GLenum, kSlots> draw_buffers{};
+    for (int i = 0; i < kSlots; ++i) {
+      draw_buffers[i] = GL_NONE;
+      if (!has(targets, kAllTargets[i])) continue;
+      glCreateTextures(GL_TEXTURE_2D, 1, &slot_textures[i]);
+      glTextureStorage2D(slot_textures[i], 1, slot_format(kAllTargets[i]).internal_format, width,
+                         height);
+      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, slot_textures[i], 0);
+      draw_buffers[i] = GL_COLOR_ATTACHMENT0 + i;
+    }
+    glNamedFramebufferDrawBuffers(fbo, kSlots, draw_buffers.data());
+    const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      release_fbo();
+      throw std::runtime_error("raster pass: framebuffer incomplete (status " +
+                               std::to_string(status) + ")");
+    }
+    fbo_width = width;
+    fbo_height = height;
+    fbo_targets = targets;
+  }
+
+  void clear(const glm::vec4& background) {
+    for (int i = 0; i < kSlots; ++i) {
+      const Target t = kAllTargets[i];
+      if (!has(fbo_targets, t)) continue;
+      if (t == Target::Id) {
+        const GLuint zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, i, zero);
+      } else if (t == Target::Color) {
+        const GLfloat c[4] = {srgb_encode(background.r), srgb_encode(background.g),
+                              srgb_encode(background.b), std::clamp(background.a, 0.0f, 1.0f)};
+        glClearNamedFramebufferfv(fbo, GL_COLOR, i, c);
+      } else {
+        const GLfloat zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(fbo, GL_COLOR, i, zero);
+      }
+    }
+    const GLfloat far_depth = 1.0f;
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+  }
+
+  void set_frame_uniforms(const RasterProgram& p, const Camera& camera, const Lighting& lighting,
+                          IdKind id_kind) {
+    glUseProgram(p.id);
+    glUniformMatrix4fv(p.view, 1, GL_FALSE, &camera.view[0][0]);
+    glUniformMatrix4fv(p.proj, 1, GL_FALSE, &camera.proj[0][0]);
+    glUniform1i(p.id_kind, id_kind == IdKind::Primitive ? 0 : id_kind == IdKind::Cluster ? 1 : 2);
+    glUniform1i(p.ortho, camera.ortho ? 1 : 0);
+    glUniform1i(p.texture, 0);
+    glUniform1f(p.ambient, lighting.ambient);
+    // Scene-fixed lights are moved into view space here; camera-fixed ones already are.
+    std::array<glm::vec4, kMaxLights> vectors{};
+    std::array<glm::vec3, kMaxLights> colors{};
+    std::array<glm::vec2, kMaxLights> specs{};
+    const auto count = static_cast<int>(lighting.lights.size());
+    for (int i = 0; i < count; ++i) {
+      const Light& l = lighting.lights[i];
+      if (l.type == Light::Type::Directional) {
+        glm::vec3 d = l.camera_fixed ? l.vector : glm::mat3(camera.view) * l.vector;
+        vectors[i] = glm::vec4(glm::normalize(d), 0.0f);
+      } else {
+        glm::vec3 p3 = l.camera_fixed ? l.vector : glm::vec3(camera.view * glm::vec4(l.vector, 1));
+        vectors[i] = glm::vec4(p3, 1.0f);
+      }
+      colors[i] = l.color;
+      specs[i] = glm::vec2(l.specular, l.shininess);
+    }
+    glUniform1i(p.light_count, count);
+    glUniform4fv(p.light_vector, kMaxLights, &vectors[0][0]);
+    glUniform3fv(p.light_color, kMaxLights, &colors[0][0]);
+    glUniform2fv(p.light_spec, kMaxLights, &specs[0][0]);
+  }
+
+  void draw_meshes(const RasterProgram& p) {
+    const Material fallback = default_material();
+    for (const GpuMesh& m : meshes) {
+      const Material& mat = m.material >= 0 ? materials[m.material] : fallback;
+      const bool has_texture = mat.base_color_texture >= 0;
+      // BLEND is drawn as MASK with cutoff 0.5: G-buffers hold one surface per pixel.
+      const bool alpha_test = mat.alpha_mode != AlphaMode::Opaque;
+      const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
+      glUniform1ui(p.object_id, m.object_id);
+      glUniform4fv(p.base_color, 1, &mat.base_color[0]);
+      glUniform1i(p.has_texture, has_texture ? 1 : 0);
+      glUniform1i(p.alpha_test, alpha_test ? 1 : 0);
+      glUniform1f(p.alpha_cutoff, cutoff);
+      glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
+      glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
+      if (has_texture) glBindTextureUnit(0, textures[mat.base_color_texture]);
+      if (mat.double_sided) {
+        glDisable(GL_CULL_FACE);
+      } else {
+        glEnable(GL_CULL_FACE);
+      }
+      // Absent optional attributes read these constants (context state, not VAO state).
+      glVertexAttrib2f(kAttribUv, 0.0f, 0.0f);
+      glVertexAttrib4f(kAttribColor, 1.0f, 1.0f, 1.0f, 1.0f);
+      glVertexAttrib3f(kAttribNormal, 0.0f, 0.0f, 1.0f);
+      glBindVertexArray(m.vao);
+      glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindVertexArray(0);
+  }
+
+  cv::Mat read_slot(int slot) const {
+    const SlotFormat f = slot_format(kAllTargets[slot]);
+    cv::Mat m(fbo_height, fbo_width, f.cv_type);
+    glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0 + slot);
+    glReadPixels(0, 0, fbo_width, fbo_height, f.read_format, f.read_type, m.data);
+    return m;
+  }
+
+  // Non-zero where a sample is geometry (depth attachment written), at SSAA resolution.
+  cv::Mat read_coverage() const {
+    cv::Mat depth(fbo_height, fbo_width, CV_32FC1);
+    glReadPixels(0, 0, fbo_width, fbo_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data);
+    cv::Mat coverage;
+    cv::compare(depth, 1.0f, coverage, cv::CMP_LT);
+    return coverage;
+  }
+
+  GBuffer read_back(TargetMask targets, int ssaa) const {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    GBuffer out;
+    out.targets = targets;
+    const TargetMask averaged = Target::Normal | Target::Depth | Target::Position | Target::Ka;
+    cv::Mat coverage;
+    if (ssaa > 1 && (targets & averaged) != 0) coverage = read_coverage();
+    for (int i = 0; i < kSlots; ++i) {
+      const Target t = kAllTargets[i];
+      if (!has(targets, t)) continue;
+      cv::Mat m = read_slot(i);
+      if (t == Target::Color) {
+        m = downsample_color(m, ssaa);
+      } else if (t == Target::Id) {
+        m = downsample_id(m, ssaa);
+      } else if (ssaa > 1) {
+        m = downsample_covered(m, coverage, ssaa, t == Target::Normal);
+      }
+      cv::flip(m, target_image(out, t), 0);  // GL's row 0 is the bottom
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return out;
+  }
+};
+
+Rasterizer::Rasterizer(GlContext& context) : m_impl(std::make_unique<Impl>(context)) {}
+
+Rasterizer::~Rasterizer() {
+  m_impl->context.make_current();
+  m_impl->release_scene();
+  m_impl->release_fbo();
+  for (auto& [mask, p] : m_impl->programs)
+    glDeleteProgram(p.id);
+}
+
+void Rasterizer::upload(const Scene& scene) {
+  Impl& s = *m_impl;
+  s.context.make_current();
+  s.release_scene();
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const int tex = scene.materials[i].base_color_texture;
+    if (tex >= static_cast<int>(scene.textures.size())) {
+      throw InputError("material '" + scene.materials[i].name + "'", "texture index out of range");
+    }
+  }
+  s.materials = scene.materials;
+  for (const Texture& t : scene.textures)
+    s.textures.push_back(upload_texture(t));
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& mesh = scene.meshes[i];
+    if (mesh.material >= static_cast<int>(scene.materials.size())) {
+      throw InputError("mesh '" + mesh.name + "'", "material index out of range");
+    }
+    if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
+    s.meshes.push_back(upload_mesh(mesh, static_cast<uint32_t>(i + 1)));
+  }
+}
+
+GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
+                           const RasterRequest& request) {
+  Impl& s = *m_impl;
+  SYLVA_CHECK(request.targets != 0 && (request.targets & ~kAllTargetsMask) == 0,
+              "raster request needs at least one known target");
+  SYLVA_CHECK(camera.width >= 1 && camera.height >= 1, "camera without a size");
+  if (request.ssaa < 1 || request.ssaa > 4) throw InputError("--ssaa", "must be in [1, 4]");
+  validate_lighting(lighting);
+  s.context.make_current();
+
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  const int width = camera.width * request.ssaa;
+  const int height = camera.height * request.ssaa;
+  if (width > max_size || height > max_size) {
+    throw InputError("--ssaa", "size x ssaa exceeds the GL limit of " + std::to_string(max_size) +
+                                   " pixels per side");
+  }
+  s.ensure_fbo(width, height, request.targets);
+  const RasterProgram& p = s.program(request.targets);
+
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
+  glViewport(0, 0, width, height);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
+  s.clear(request.background);
+  s.set_frame_uniforms(p, camera, lighting, request.id_kind);
+  s.draw_meshes(p);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  return s.read_back(request.targets, request.ssaa);
+}
+
+TargetMask Rasterizer::last_allocated_targets() const {
+  return m_impl->fbo_targets;
+}
+
+}  // namespace sylva

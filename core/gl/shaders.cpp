@@ -1,1 +1,256 @@
-// placeholder until implemented
+#include "core/gl/shaders.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+namespace sylva {
+
+namespace {
+
+const char* const kVertexBody = R"GLSL(
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+layout(location = 3) in vec4 a_color;
+layout(location = 4) in uvec2 a_ids;
+layout(location = 5) in uint a_role;
+
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object
+uniform uint u_object_id;   // mesh index + 1
+
+out vec3 v_view_pos;
+out vec3 v_normal;
+out float v_ka;
+out vec2 v_uv;
+out vec4 v_color;
+flat out uint v_id;
+flat out uint v_role;
+
+void main() {
+  vec4 view_pos = u_view * vec4(a_position, 1.0);
+  // Luft et al. Sec. 3.2: ka is stored as the normal's length; unit normals mean ka = 1.
+  float len = length(a_normal);
+  v_ka = clamp(len, 0.0, 1.0);
+  // The view matrix is rigid, so its upper 3x3 rotates normals.
+  v_normal = mat3(u_view) * (len > 1e-20 ? a_normal / len : vec3(0.0));
+  v_view_pos = view_pos.xyz;
+  v_uv = a_uv;
+  v_color = a_color;
+  v_id = u_id_kind == 0 ? a_ids.x : (u_id_kind == 1 ? a_ids.y : u_object_id);
+  v_role = a_role;
+  gl_Position = u_proj * view_pos;
+}
+)GLSL";
+
+const char* const kFragmentBody = R"GLSL(
+in vec3 v_view_pos;
+in vec3 v_normal;
+in float v_ka;
+in vec2 v_uv;
+in vec4 v_color;
+flat in uint v_id;
+flat in uint v_role;
+
+uniform vec4 u_base_color;      // linear RGBA factor
+uniform bool u_has_texture;
+uniform sampler2D u_texture;    // GL_SRGB8_ALPHA8: sampled values are linear
+uniform bool u_alpha_test;      // MASK (and BLEND, treated as MASK)
+uniform float u_alpha_cutoff;
+uniform bool u_double_sided;
+uniform bool u_has_normals;     // false: flat normals from screen-space derivatives
+uniform bool u_ortho;
+
+uniform float u_ambient;
+uniform int u_light_count;
+uniform vec4 u_light_vector[8]; // view space; w = 0 direction toward the light, 1 position
+uniform vec3 u_light_color[8];  // linear intensity
+uniform vec2 u_light_spec[8];   // (specular weight, shininess)
+
+#ifdef OUT_COLOR
+layout(location = 0) out vec4 o_color;
+#endif
+#ifdef OUT_NORMAL
+layout(location = 1) out vec4 o_normal;
+#endif
+#ifdef OUT_DEPTH
+layout(location = 2) out float o_depth;
+#endif
+#ifdef OUT_POSITION
+layout(location = 3) out vec4 o_position;
+#endif
+#ifdef OUT_ID
+layout(location = 4) out uint o_id;
+#endif
+#ifdef OUT_KA
+layout(location = 5) out float o_ka;
+#endif
+
+vec3 srgb_encode(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+vec3 surface_normal() {
+  vec3 n;
+  if (u_has_normals) {
+    float len = length(v_normal);
+    n = len > 1e-12 ? v_normal / len : vec3(0.0, 0.0, 1.0);
+  } else {
+    n = normalize(cross(dFdx(v_view_pos), dFdy(v_view_pos)));  // faces the viewer
+  }
+  if (u_double_sided && !gl_FrontFacing) n = -n;
+  return n;
+}
+
+void main() {
+  vec4 base = u_base_color * v_color;
+#if defined(OUT_COLOR)
+  if (u_has_texture) base *= texture(u_texture, v_uv);
+#else
+  if (u_has_texture && u_alpha_test) base.a *= texture(u_texture, v_uv).a;
+#endif
+  if (u_alpha_test && base.a < u_alpha_cutoff) discard;
+  vec3 n = surface_normal();
+
+#ifdef OUT_COLOR
+  // Luft et al. Eq. 1 (no shadowing term): I = Ia ka + sum_i Ii [kd (N.L) + ks (N.H)^n],
+  // Blinn's half vector in place of Phong's reflection vector. Point lights do not attenuate.
+  vec3 v = u_ortho ? vec3(0.0, 0.0, 1.0) : normalize(-v_view_pos);
+  vec3 diffuse = vec3(u_ambient * v_ka);
+  vec3 specular = vec3(0.0);
+  for (int i = 0; i < u_light_count; ++i) {
+    vec3 l = u_light_vector[i].w == 0.0 ? u_light_vector[i].xyz
+                                        : normalize(u_light_vector[i].xyz - v_view_pos);
+    float n_dot_l = dot(n, l);
+    if (n_dot_l <= 0.0) continue;
+    diffuse += n_dot_l * u_light_color[i];
+    vec3 h = normalize(l + v);
+    specular += u_light_spec[i].x * pow(max(dot(n, h), 0.0), u_light_spec[i].y) * u_light_color[i];
+  }
+  o_color = vec4(srgb_encode(base.rgb * diffuse + specular), 1.0);
+#endif
+#ifdef OUT_NORMAL
+  o_normal = vec4(n, 0.0);
+#endif
+#ifdef OUT_DEPTH
+  o_depth = -v_view_pos.z;
+#endif
+#ifdef OUT_POSITION
+  o_position = vec4(v_view_pos, 1.0);
+#endif
+#ifdef OUT_ID
+  o_id = v_id;
+#endif
+#ifdef OUT_KA
+  o_ka = v_ka;
+#endif
+}
+)GLSL";
+
+std::string info_log(GLuint object, bool is_program) {
+  GLint length = 0;
+  if (is_program) {
+    glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+  } else {
+    glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+  }
+  std::vector<char> log(static_cast<size_t>(std::max(length, 1)), '\0');
+  if (is_program) {
+    glGetProgramInfoLog(object, length, nullptr, log.data());
+  } else {
+    glGetShaderInfoLog(object, length, nullptr, log.data());
+  }
+  return std::string(log.data());
+}
+
+}  // namespace
+
+std::string raster_vertex_source() {
+  return std::string("#version 450 core\n") + kVertexBody;
+}
+
+std::string raster_fragment_source(TargetMask targets) {
+  std::string s = "#version 450 core\n";
+  for (Target t : kAllTargets) {
+    if (!has(targets, t)) continue;
+    std::string name = target_name(t);
+    for (char& c : name)
+      c = static_cast<char>(c - 'a' + 'A');
+    s += "#define OUT_" + name + " 1\n";
+  }
+  return s + kFragmentBody;
+}
+
+GLuint compile_shader(GLenum stage, const std::string& source, const std::string& name) {
+  GLuint shader = glCreateShader(stage);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    const std::string log = info_log(shader, false);
+    glDeleteShader(shader);
+    throw std::runtime_error("GLSL compile error in " + name + ": " + log);
+  }
+  return shader;
+}
+
+GLuint link_program(GLuint vertex, GLuint fragment, const std::string& name) {
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    const std::string log = info_log(program, true);
+    glDeleteProgram(program);
+    throw std::runtime_error("GLSL link error in " + name + ": " + log);
+  }
+  return program;
+}
+
+GLuint build_raster_program(TargetMask targets) {
+  const std::string name = "raster pass (targets " + std::to_string(targets) + ")";
+  GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(), name + " vertex");
+  GLuint fs = 0;
+  try {
+    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets), name + " fragment");
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  return link_program(vs, fs, name);
+}
+
+RasterProgram make_raster_program(TargetMask targets) {
+  RasterProgram p;
+  p.id = build_raster_program(targets);
+  auto loc = [&](const char* name) { return glGetUniformLocation(p.id, name); };
+  p.view = loc("u_view");
+  p.proj = loc("u_proj");
+  p.id_kind = loc("u_id_kind");
+  p.object_id = loc("u_object_id");
+  p.base_color = loc("u_base_color");
+  p.has_texture = loc("u_has_texture");
+  p.texture = loc("u_texture");
+  p.alpha_test = loc("u_alpha_test");
+  p.alpha_cutoff = loc("u_alpha_cutoff");
+  p.double_sided = loc("u_double_sided");
+  p.has_normals = loc("u_has_normals");
+  p.ortho = loc("u_ortho");
+  p.ambient = loc("u_ambient");
+  p.light_count = loc("u_light_count");
+  p.light_vector = loc("u_light_vector");
+  p.light_color = loc("u_light_color");
+  p.light_spec = loc("u_light_spec");
+  return p;
+}
+
+}  // namespace sylva

@@ -1,1 +1,154 @@
-// placeholder until implemented
+#include "core/graph/render_graph.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace sylva {
+
+bool PassContext::wanted(int resource) const { return m_graph.is_live(resource); }
+
+const std::any& PassContext::value(int resource) const {
+  const auto& reads = m_graph.m_passes[m_pass].reads;
+  SYLVA_CHECK(std::find(reads.begin(), reads.end(), resource) != reads.end(),
+              "pass '" + m_graph.m_passes[m_pass].name + "' reads undeclared '" +
+                  m_graph.resource_name(resource) + "'");
+  const std::any& v = m_graph.m_resources[resource].value;
+  SYLVA_CHECK(v.has_value(), "render graph: '" + m_graph.resource_name(resource) + "' is empty");
+  return v;
+}
+
+void PassContext::write(int resource, std::any value) {
+  SYLVA_CHECK(m_graph.m_resources.at(resource).writer == m_pass,
+              "pass '" + m_graph.m_passes[m_pass].name + "' writes undeclared '" +
+                  m_graph.resource_name(resource) + "'");
+  if (m_graph.is_live(resource)) m_graph.m_resources[resource].value = std::move(value);
+}
+
+int RenderGraph::resource(const std::string& name) {
+  int found = find_resource(name);
+  if (found >= 0) return found;
+  Resource r;
+  r.name = name;
+  m_resources.push_back(std::move(r));
+  m_compiled = false;
+  return static_cast<int>(m_resources.size()) - 1;
+}
+
+int RenderGraph::find_resource(const std::string& name) const {
+  for (size_t i = 0; i < m_resources.size(); ++i)
+    if (m_resources[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+const std::string& RenderGraph::resource_name(int resource) const {
+  return m_resources.at(resource).name;
+}
+
+int RenderGraph::add_pass(const std::string& name, std::vector<int> reads, std::vector<int> writes,
+                          Run run) {
+  SYLVA_CHECK(!has_pass(name), "render graph: duplicate pass '" + name + "'");
+  int id = static_cast<int>(m_passes.size());
+  for (int r : reads) {
+    SYLVA_CHECK(m_resources.at(r).writer >= 0,
+                "pass '" + name + "' reads '" + resource_name(r) + "' before anything writes it");
+    m_resources[r].readers.push_back(id);
+  }
+  for (int w : writes) {
+    SYLVA_CHECK(m_resources.at(w).writer < 0,
+                "resource '" + resource_name(w) + "' written by two passes");
+    m_resources[w].writer = id;
+  }
+  m_passes.push_back(Pass{name, std::move(reads), std::move(writes), std::move(run)});
+  m_compiled = false;
+  return id;
+}
+
+void RenderGraph::present(int resource) {
+  SYLVA_CHECK(m_resources.at(resource).writer >= 0,
+              "presented resource '" + resource_name(resource) + "' has no writer");
+  m_resources[resource].presented = true;
+  m_compiled = false;
+}
+
+void RenderGraph::compile() {
+  for (Resource& r : m_resources) {
+    r.live = r.presented;
+    r.pending_reads = 0;
+  }
+  // Passes come in dependency order, so one sweep from the back reaches every producer.
+  for (int p = static_cast<int>(m_passes.size()) - 1; p >= 0; --p) {
+    Pass& pass = m_passes[p];
+    pass.live = std::any_of(pass.writes.begin(), pass.writes.end(),
+                            [&](int w) { return m_resources[w].live; });
+    if (!pass.live) continue;
+    for (int r : pass.reads) m_resources[r].live = true;
+  }
+  for (const Pass& pass : m_passes)
+    if (pass.live)
+      for (int r : pass.reads) ++m_resources[r].pending_reads;
+  m_compiled = true;
+}
+
+void RenderGraph::execute() {
+  if (!m_compiled) compile();
+  for (size_t p = 0; p < m_passes.size(); ++p) {
+    Pass& pass = m_passes[p];
+    if (!pass.live) continue;
+    PassContext ctx(*this, static_cast<int>(p));
+    pass.run(ctx);
+    for (int w : pass.writes)
+      SYLVA_CHECK(!m_resources[w].live || m_resources[w].value.has_value(),
+                  "pass '" + pass.name + "' did not write '" + resource_name(w) + "'");
+    // Release inputs after their last reader, unless they are outputs.
+    for (int r : pass.reads) {
+      Resource& res = m_resources[r];
+      if (--res.pending_reads == 0 && !res.presented) res.value.reset();
+    }
+  }
+}
+
+bool RenderGraph::is_live(int resource) const {
+  SYLVA_CHECK(m_compiled, "render graph: compile() before asking what is live");
+  return m_resources.at(resource).live;
+}
+
+bool RenderGraph::has_pass(const std::string& name) const {
+  return std::any_of(m_passes.begin(), m_passes.end(),
+                     [&](const Pass& p) { return p.name == name; });
+}
+
+bool RenderGraph::pass_live(const std::string& name) const {
+  SYLVA_CHECK(m_compiled, "render graph: compile() before asking what is live");
+  for (const Pass& p : m_passes)
+    if (p.name == name) return p.live;
+  return false;
+}
+
+std::vector<std::string> RenderGraph::live_passes() const {
+  std::vector<std::string> out;
+  for (const Pass& p : m_passes)
+    if (p.live) out.push_back(p.name);
+  return out;
+}
+
+std::string RenderGraph::to_dot() const {
+  std::ostringstream s;
+  auto style = [](bool live) { return live ? "" : ", style=dashed, color=grey, fontcolor=grey"; };
+  s << "digraph sylva {\n  rankdir=LR;\n";
+  for (size_t p = 0; p < m_passes.size(); ++p)
+    s << "  p" << p << " [shape=box, label=\"" << m_passes[p].name << "\"" << style(m_passes[p].live)
+      << "];\n";
+  for (size_t r = 0; r < m_resources.size(); ++r) {
+    const Resource& res = m_resources[r];
+    s << "  r" << r << " [shape=ellipse, label=\"" << res.name << "\""
+      << (res.presented ? ", peripheries=2" : "") << style(res.live) << "];\n";
+  }
+  for (size_t p = 0; p < m_passes.size(); ++p) {
+    for (int r : m_passes[p].reads) s << "  r" << r << " -> p" << p << ";\n";
+    for (int w : m_passes[p].writes) s << "  p" << p << " -> r" << w << ";\n";
+  }
+  s << "}\n";
+  return s.str();
+}
+
+}  // namespace sylva

@@ -1,1 +1,73 @@
-// placeholder until implemented
+#include "core/io/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace sylva {
+
+void write_file_atomic(const std::string& path, const std::string& bytes) {
+  fs::path target(path);
+  if (target.filename().empty()) throw InputError(path, "cannot write: not a file name");
+  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) throw InputError(path, "cannot write: is a directory");
+  if (!fs::is_directory(dir, ec)) throw InputError(path, "cannot write: folder does not exist");
+  std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  std::vector<char> name(tmpl.begin(), tmpl.end());
+  name.push_back('\0');
+  int fd = mkstemp(name.data());
+  if (fd < 0) throw InputError(path, std::string("cannot write: ") + std::strerror(errno));
+  auto fail = [&](int err) {
+    close(fd);
+    unlink(name.data());
+    throw InputError(path, std::string("cannot write: ") + std::strerror(err));
+  };
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail(errno);
+    }
+    done += static_cast<size_t>(n);
+  }
+  // mkstemp creates 0600; give the file the usual permissions under the umask.
+  mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
+  if (close(fd) != 0) {
+    int err = errno;
+    unlink(name.data());
+    throw InputError(path, std::string("cannot write: ") + std::strerror(err));
+  }
+  if (std::rename(name.data(), path.c_str()) != 0) {
+    int err = errno;
+    unlink(name.data());
+    throw InputError(path, std::string("cannot write: ") + std::strerror(err));
+  }
+}
+
+std::string read_file_bytes(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, "no such file");
+  if (fs::is_directory(path, ec)) throw InputError(path, "is a directory, expected a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::string("cannot read: ") + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace sylva

@@ -23,4 +23,12 @@ Scene load_scene(const std::string& path, const LoadOptions& options = {});
 // validation, degenerate removal, roles (unless keep_roles), primitive ids, cluster ids = 1.
 void finish_scene(Scene& scene, const LoadOptions& options, bool keep_roles = false);
 
+// Area-weighted vertex normals (unit length; (0, 0, 1) for vertices on no proper triangle).
+void compute_vertex_normals(Mesh& mesh);
+
+// Checks a plant hierarchy: equal branch array lengths, parents in [-1, branches) without
+// cycles, finite non-negative diameters, leaf branches in [0, branches). Throws
+// InputError(where, ...) otherwise. An empty hierarchy is valid.
+void validate_hierarchy(const Hierarchy& hierarchy, const std::string& where);
+
 }  // namespace sylva

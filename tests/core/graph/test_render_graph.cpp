@@ -1,1 +1,100 @@
-// placeholder until implemented
+// The render graph culls passes and resources nobody presents, runs the rest in order,
+// tells multi-output passes which outputs are wanted, and frees inputs after their last use.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/graph/render_graph.h"
+
+namespace sylva {
+namespace {
+
+// raster -> {color, normal, id}; edges reads normal+id; toon reads color.
+struct Fixture {
+  RenderGraph g;
+  int color, normal, id, edges_out, toon_out;
+  std::string log;
+  std::string raster_made;
+  Fixture() {
+    color = g.resource("color");
+    normal = g.resource("normal");
+    id = g.resource("id");
+    edges_out = g.resource("edges");
+    toon_out = g.resource("toon");
+    g.add_pass("raster", {}, {color, normal, id}, [this](PassContext& c) {
+      log += "raster;";
+      for (int r : {color, normal, id})
+        if (c.wanted(r)) {
+          raster_made += g.resource_name(r) + ",";
+          c.write(r, 1);
+        }
+    });
+    g.add_pass("edges", {normal, id}, {edges_out}, [this](PassContext& c) {
+      log += "edges;";
+      c.write(edges_out, c.read<int>(normal) + c.read<int>(id));
+    });
+    g.add_pass("toon", {color}, {toon_out}, [this](PassContext& c) {
+      log += "toon;";
+      c.write(toon_out, c.read<int>(color) * 10);
+    });
+  }
+};
+
+TEST(RenderGraph, CullsWhatNobodyPresents) {
+  Fixture f;
+  f.g.present(f.toon_out);
+  f.g.compile();
+  EXPECT_TRUE(f.g.pass_live("raster"));
+  EXPECT_TRUE(f.g.pass_live("toon"));
+  EXPECT_FALSE(f.g.pass_live("edges"));
+  EXPECT_FALSE(f.g.is_live(f.id));
+  EXPECT_FALSE(f.g.is_live(f.normal));
+  f.g.execute();
+  EXPECT_EQ(f.log, "raster;toon;");
+  EXPECT_EQ(f.raster_made, "color,");  // the ID and normal targets are never produced
+  EXPECT_EQ(f.g.get<int>(f.toon_out), 10);
+}
+
+TEST(RenderGraph, MultipleOutputsKeepEverythingTheyNeed) {
+  Fixture f;
+  f.g.present(f.toon_out);
+  f.g.present(f.edges_out);
+  f.g.execute();
+  EXPECT_EQ(f.log, "raster;edges;toon;");
+  EXPECT_EQ(f.raster_made, "color,normal,id,");
+  EXPECT_EQ(f.g.get<int>(f.edges_out), 2);
+}
+
+TEST(RenderGraph, NothingPresentedRunsNothing) {
+  Fixture f;
+  f.g.execute();
+  EXPECT_EQ(f.log, "");
+  EXPECT_TRUE(f.g.live_passes().empty());
+}
+
+TEST(RenderGraph, IntermediatesAreReleasedAfterLastReader) {
+  Fixture f;
+  f.g.present(f.edges_out);
+  f.g.execute();
+  EXPECT_DEATH_IF_SUPPORTED((void)f.g.get<int>(f.normal), "not produced");
+}
+
+TEST(RenderGraph, DotExportMarksCulledNodes) {
+  Fixture f;
+  f.g.present(f.toon_out);
+  f.g.compile();
+  std::string dot = f.g.to_dot();
+  EXPECT_NE(dot.find("digraph"), std::string::npos);
+  EXPECT_NE(dot.find("label=\"edges\", style=dashed"), std::string::npos);
+  EXPECT_NE(dot.find("label=\"toon\"]"), std::string::npos);
+  EXPECT_NE(dot.find("peripheries=2"), std::string::npos);
+}
+
+TEST(RenderGraph, ReadingBeforeWritingIsAProgrammingError) {
+  RenderGraph g;
+  int a = g.resource("a");
+  EXPECT_DEATH_IF_SUPPORTED(g.add_pass("p", {a}, {}, [](PassContext&) {}), "before anything");
+}
+
+}  // namespace
+}  // namespace sylva

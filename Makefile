@@ -1,0 +1,47 @@
+# Sylva: `make demo` renders the demo gallery into out/, `make test` runs every test.
+# Both install missing Debian packages first (scripts/setup.sh) and build in Release.
+BUILD ?= build
+ASAN_BUILD ?= build-asan
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all setup build test demo sanitize perf golden format clean
+
+all: build
+
+setup:
+	@scripts/setup.sh
+
+$(BUILD)/build.ninja:
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+
+build: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest -LE perf --output-on-failure -j $(JOBS) --timeout 900
+
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (no benchmarks).
+sanitize: setup
+	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSYLVA_SANITIZE=ON \
+	  -DSYLVA_BUILD_PERF=OFF
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest -L unit -LE perf --output-on-failure -j $(JOBS) --timeout 1800
+
+demo: build
+	@scripts/demo.sh $(BUILD)/cli/sylva out
+
+perf: build
+	cd $(BUILD) && ctest -L perf --output-on-failure -V
+
+# Rewrites tests/golden/*.png from the current renderer (look at them before committing).
+golden: build
+	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/cli/test_cli --gtest_filter='Golden*'
+
+format:
+	git ls-files '*.cpp' '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) out

@@ -1,0 +1,46 @@
+// Options shared by the sylva subcommands: scene loading (--foliage, --clusters, --seed),
+// camera and image (--size, --azimuth, --elevation, --distance, --fov, --ortho, --ssaa,
+// --background, --ambient), and the loader pipeline they drive.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "core/gl/camera.h"
+#include "core/gl/lights.h"
+#include "core/gl/rasterizer.h"
+#include "core/scene/scene.h"
+
+namespace sylva::cli {
+
+struct SceneOptions {
+  std::string path;
+  std::string foliage = "auto";
+  int clusters = 0;
+  uint64_t seed = 1;
+};
+void add_scene_options(CLI::App& cmd, SceneOptions& o);
+// Loads, classifies and clusters. Throws InputError on bad input.
+Scene load_scene_for_cli(const SceneOptions& o);
+
+struct ViewOptions {
+  std::string size = "1024x1024";
+  OrbitParams orbit;
+  int ssaa = 1;
+  std::string background = "white";
+  float ambient = 0.35f;
+  std::string id_kind = "primitive";
+  int width = 0, height = 0;  // parsed from size
+};
+void add_view_options(CLI::App& cmd, ViewOptions& o);
+// Parses and range-checks the view options (size, ssaa, background, ambient, id kind).
+void resolve_view_options(ViewOptions& o);
+RasterRequest raster_request(const ViewOptions& o);
+Lighting lighting_for(const ViewOptions& o);
+
+// "WxH" or "N" (square); each in [1, 16384]. Throws InputError("--size", ...).
+void parse_size(const std::string& s, int& width, int& height);
+// "white", "black", "transparent" or "#RRGGBB"; returns linear RGBA.
+glm::vec4 parse_background(const std::string& s);
+
+}  // namespace sylva::cli

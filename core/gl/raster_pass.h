@@ -1,0 +1,27 @@
+// The raster pass as a render-graph node: writes the six G-buffer resources ("color",
+// "normal", "depth", "position", "id", "ka", each a cv::Mat as described in gbuffer.h) and,
+// when run, asks the rasteriser for only the targets some live pass reads or the caller
+// presents.
+#pragma once
+
+#include "core/gl/rasterizer.h"
+#include "core/graph/render_graph.h"
+
+namespace sylva {
+
+struct GBufferHandles {
+  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1;
+  int of(Target t) const;
+};
+
+struct RasterSetup {
+  Rasterizer* rasterizer = nullptr;  // uploaded with the scene; outlives the graph's execute()
+  Camera camera;
+  Lighting lighting;
+  RasterRequest request;  // request.targets is ignored: the graph decides
+};
+
+GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup);
+
+
+}  // namespace sylva

@@ -1,0 +1,21 @@
+// Reading glTF 2.0 (.gltf with external or embedded buffers, .glb) into the scene model with
+// tinygltf: walks the default scene's node tree composing transforms, flattens every
+// triangle primitive into a world-space Mesh, reads base-colour materials and decodes their
+// textures to RGBA8, the plant hierarchy (extras "sylva_hierarchy") and per-mesh roles
+// (extras "sylva_role"). The result is raw: load.h's finish_scene validates it further and
+// assigns ids. Every malformed file throws InputError(path, "<what is wrong>").
+#pragma once
+
+#include <string>
+
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+// Meshes get the glTF mesh name (else the node name, else "mesh<i>"), with "[k]" appended
+// for primitive k when a mesh has several. Mesh::roles is filled only for primitives whose
+// primitive or mesh extras carry "sylva_role" ("foliage", "wood", "ground", "other");
+// otherwise it is left empty. primitive_ids and cluster_ids are left empty.
+Scene read_gltf(const std::string& path);
+
+}  // namespace sylva

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs what building and testing Sylva needs on Debian 12: the Debian packages (with apt,
+# as root or through sudo) and, for the tests, the Khronos glTF Validator from npm into
+# tests/tools/node_modules. Installs only what is missing; safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config clang-format
+  libosmesa6-dev libopencv-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+command -v npm >/dev/null 2>&1 || missing+=(npm)
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+if [ "${SYLVA_SKIP_NPM:-0}" != "1" ] && [ ! -f tests/tools/node_modules/gltf-validator/package.json ]; then
+  echo "setup: installing gltf-validator (npm) for the tests"
+  (cd tests/tools && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi
