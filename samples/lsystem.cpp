@@ -217,7 +217,9 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
         glm::vec3 both = s.internodes[b.first + k - 1].heading() + dir;
         if (glm::length(both) > 1e-4f) dir = glm::normalize(both);
       }
-      float radius = 0.5f * (k < b.count ? diameters[b.first + k] : 0.6f * diameters[cur.branch == b.first ? 0 : b.first + b.count - 1]);
+      const float ring_d = k < b.count ? diameters[b.first + k]
+                                       : 0.6f * diameters[b.first + b.count - 1];
+      const float radius = 0.5f * ring_d;
       if (k == 0) ref = cur.up;
       ref -= dir * glm::dot(ref, dir);
       ref = glm::length(ref) > 1e-5f ? glm::normalize(ref) : any_perpendicular(dir);

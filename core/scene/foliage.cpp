@@ -49,7 +49,8 @@ std::string name_list(const std::set<std::string>& names) {
       out += ", and " + std::to_string(names.size() - shown) + " more";
       break;
     }
-    out += (shown ? ", " : "") + (n.empty() ? std::string("(unnamed)") : n);
+    if (shown) out += ", ";
+    out += n.empty() ? std::string("(unnamed)") : n;
     ++shown;
   }
   return out;
@@ -58,7 +59,10 @@ std::string name_list(const std::set<std::string>& names) {
 std::string reason(const std::set<std::string>& materials, const std::set<std::string>& meshes) {
   std::string out;
   if (!materials.empty()) out += "materials: " + name_list(materials);
-  if (!meshes.empty()) out += std::string(out.empty() ? "" : "; ") + "meshes: " + name_list(meshes);
+  if (!meshes.empty()) {
+    if (!out.empty()) out += "; ";
+    out += "meshes: " + name_list(meshes);
+  }
   return out.empty() ? "no foliage" : out;
 }
 

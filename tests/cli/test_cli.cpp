@@ -1,1 +1,215 @@
-// placeholder until implemented
+// The sylva executable end to end: help, errors (one line, exit 2, nothing written),
+// determinism, lossless buffers, and glTF validity of what it writes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "tests/test_support.h"
+
+namespace sylva::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+int count_lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+// Exit 2, a single "sylva: error:" line that mentions `needle`.
+void expect_input_error(const std::string& args, const std::string& needle) {
+  RunResult r = run_sylva(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+  EXPECT_EQ(count_lines(r.output), 1) << args << "\n" << r.output;
+  EXPECT_EQ(r.output.rfind("sylva: error: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in "
+                                                      << r.output;
+}
+
+// A small sample tree, generated once per test program.
+const std::string& small_tree() {
+  static std::string path = [] {
+    std::string p = temp_dir("tree") + "/tree.glb";
+    RunResult r = run_sylva("sample tree --leaves 2000 --seed 3 -o " + p);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return p;
+  }();
+  return path;
+}
+
+TEST(Cli, HelpListsCommands) {
+  RunResult r = run_sylva("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* cmd : {"sample", "info", "render", "buffers"})
+    EXPECT_NE(r.output.find(cmd), std::string::npos) << cmd;
+  RunResult rr = run_sylva("render --help");
+  EXPECT_EQ(rr.status, 0);
+  EXPECT_NE(rr.output.find("--elevation"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  expect_input_error("", "");
+  expect_input_error("frobnicate", "frobnicate");
+  expect_input_error("render " + small_tree(), "--output");
+}
+
+TEST(Cli, BadOptionValuesNameTheOption) {
+  std::string dir = temp_dir("bad-options");
+  std::string out = dir + "/x.png";
+  std::string base = "render " + small_tree() + " -o " + out + " ";
+  expect_input_error(base + "--size 0x10", "--size");
+  expect_input_error(base + "--size 16385", "--size");
+  expect_input_error(base + "--size banana", "--size");
+  expect_input_error(base + "--ssaa 0", "--ssaa");
+  expect_input_error(base + "--ssaa 5", "--ssaa");
+  expect_input_error(base + "--elevation 90", "--elevation");
+  expect_input_error(base + "--elevation -89.5", "--elevation");
+  expect_input_error(base + "--fov 0.5", "--fov");
+  expect_input_error(base + "--fov 151", "--fov");
+  expect_input_error(base + "--distance -1", "--distance");
+  expect_input_error(base + "--ambient 1.01", "--ambient");
+  expect_input_error(base + "--ambient -0.01", "--ambient");
+  expect_input_error(base + "--background purple", "--background");
+  expect_input_error(base + "--style nonesuch", "--style");
+  expect_input_error(base + "--foliage nomatch*", "--foliage");
+  expect_input_error(base + "--clusters 4097", "--clusters");
+  expect_input_error(base + "--clusters -1", "--clusters");
+  expect_input_error("render " + small_tree() + " -o " + dir + "/x.bmp", "--output");
+  expect_input_error("render " + small_tree() + " -o " + dir + "/missing/x.png", "--output");
+  expect_input_error("buffers " + small_tree() + " --out-dir " + dir + "/b --buffers color,nope",
+                     "--buffers");
+  expect_input_error("buffers " + small_tree() + " --out-dir " + dir + "/b --id leaf", "--id");
+  expect_input_error("sample oak -o " + dir + "/t.glb", "oak");
+  expect_input_error("sample tree --leaves 99 -o " + dir + "/t.glb", "--leaves");
+  expect_input_error("sample tree --leaves 2000001 -o " + dir + "/t.glb", "--leaves");
+  EXPECT_TRUE(fs::is_empty(dir)) << "an output was left behind";
+}
+
+TEST(Cli, ParameterExtremesRender) {
+  std::string dir = temp_dir("extremes");
+  for (const char* opts : {"--size 1 --ssaa 4", "--size 64x16 --elevation 89 --fov 150",
+                           "--size 16x64 --elevation -89 --fov 1 --ambient 0",
+                           "--size 32 --ortho --ambient 1 --background transparent",
+                           "--size 32 --distance 100 --azimuth -720"}) {
+    std::string out = dir + "/e.png";
+    RunResult r = run_sylva("render " + small_tree() + " " + opts + " -o " + out);
+    EXPECT_EQ(r.status, 0) << opts << "\n" << r.output;
+    EXPECT_FALSE(cv::imread(out, cv::IMREAD_UNCHANGED).empty()) << opts;
+  }
+}
+
+TEST(Cli, BadScenesExitTwoAndWriteNothing) {
+  std::string dir = temp_dir("bad-scenes");
+  std::string out = dir + "/out.png";
+  expect_input_error("render " + dir + "/nope.glb -o " + out, "no such file");
+  write_file(dir + "/empty.glb", "");
+  expect_input_error("render " + dir + "/empty.glb -o " + out, "empty.glb");
+  write_file(dir + "/bad.gltf", "{ \"asset\": { \"version\": ");
+  expect_input_error("info " + dir + "/bad.gltf", "bad.gltf");
+  std::string fern = read_file(fern_path());
+  write_file(dir + "/truncated.glb", fern.substr(0, fern.size() / 2));
+  expect_input_error("render " + dir + "/truncated.glb -o " + out, "truncated.glb");
+  write_file(dir + "/scene.xyz", "hello");
+  expect_input_error("info " + dir + "/scene.xyz", ".glb");
+  EXPECT_FALSE(file_exists(out));
+}
+
+TEST(Cli, SameCommandTwiceGivesSameBytes) {
+  std::string dir = temp_dir("determinism");
+  for (int i = 0; i < 2; ++i) {
+    std::string n = std::to_string(i);
+    ASSERT_EQ(run_sylva("sample bush --leaves 500 --seed 9 -o " + dir + "/b" + n + ".glb").status,
+              0);
+    ASSERT_EQ(run_sylva("render " + small_tree() + " --size 128 --ssaa 2 -o " + dir + "/r" + n +
+                        ".png")
+                  .status,
+              0);
+  }
+  EXPECT_EQ(read_file(dir + "/b0.glb"), read_file(dir + "/b1.glb"));
+  EXPECT_EQ(read_file(dir + "/r0.png"), read_file(dir + "/r1.png"));
+  ASSERT_EQ(run_sylva("sample bush --leaves 500 --seed 10 -o " + dir + "/b2.glb").status, 0);
+  EXPECT_NE(read_file(dir + "/b0.glb"), read_file(dir + "/b2.glb"));
+}
+
+TEST(Cli, BuffersReadBackExactly) {
+  std::string dir = temp_dir("buffers") + "/out";
+  RunResult r = run_sylva("buffers " + small_tree() + " --size 96x64 --out-dir " + dir +
+                          " --id cluster --graph " + dir + ".dot");
+  ASSERT_EQ(r.status, 0) << r.output;
+  cv::Mat color = cv::imread(dir + "/color.png", cv::IMREAD_UNCHANGED);
+  cv::Mat normal = cv::imread(dir + "/normal.tiff", cv::IMREAD_UNCHANGED);
+  cv::Mat depth = cv::imread(dir + "/depth.tiff", cv::IMREAD_UNCHANGED);
+  cv::Mat position = cv::imread(dir + "/position.tiff", cv::IMREAD_UNCHANGED);
+  cv::Mat id = cv::imread(dir + "/id.tiff", cv::IMREAD_UNCHANGED);
+  cv::Mat ka = cv::imread(dir + "/ka.tiff", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(color.type(), CV_8UC4);
+  ASSERT_EQ(normal.type(), CV_32FC3);
+  ASSERT_EQ(depth.type(), CV_32FC1);
+  ASSERT_EQ(position.type(), CV_32FC3);
+  ASSERT_EQ(id.type(), CV_32FC1);
+  ASSERT_EQ(ka.type(), CV_32FC1);
+  EXPECT_EQ(normal.size(), cv::Size(96, 64));
+  int covered = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 96; ++x) {
+      float d = depth.at<float>(y, x);
+      cv::Vec3f n = normal.at<cv::Vec3f>(y, x);
+      cv::Vec3f p = position.at<cv::Vec3f>(y, x);
+      float i = id.at<float>(y, x);
+      EXPECT_EQ(i, std::floor(i));
+      if (d == 0) {
+        EXPECT_EQ(i, 0.0f);
+        EXPECT_EQ(color.at<cv::Vec4b>(y, x)[3], 0);
+        continue;
+      }
+      ++covered;
+      EXPECT_GT(i, 0.0f);
+      EXPECT_NEAR(cv::norm(n), 1.0, 1e-3);
+      EXPECT_NEAR(-p[2], d, 1e-3 * d);  // depth is the distance along the view axis
+      EXPECT_GE(ka.at<float>(y, x), 0.0f);
+      EXPECT_LE(ka.at<float>(y, x), 1.0f);
+    }
+  EXPECT_GT(covered, 96 * 64 / 20);
+  for (const char* f : {"normal", "depth", "position", "id", "ka"})
+    EXPECT_TRUE(file_exists(dir + "/" + f + ".preview.png")) << f;
+  std::string cam = read_file(dir + "/camera.json");
+  EXPECT_NE(cam.find("\"projection\""), std::string::npos);
+  EXPECT_NE(read_file(dir + ".dot").find("raster"), std::string::npos);
+}
+
+TEST(Cli, InfoReportsTheSample) {
+  RunResult r = run_sylva("info --json " + small_tree());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("\"leaves\": 2"), std::string::npos) << r.output;  // ~2000
+  EXPECT_NE(r.output.find("hierarchy"), std::string::npos) << r.output;
+  RunResult f = run_sylva("info " + fern_path());
+  ASSERT_EQ(f.status, 0) << f.output;
+  EXPECT_NE(f.output.find("MASK"), std::string::npos) << f.output;
+}
+
+// Every .glb Sylva writes passes the Khronos glTF Validator with 0 errors.
+TEST(Cli, WrittenGlbPassesTheKhronosValidator) {
+  std::string validator = source_dir() + "/tests/tools/validate_gltf.mjs";
+  ASSERT_TRUE(file_exists(source_dir() + "/tests/tools/node_modules/gltf-validator/package.json"))
+      << "run scripts/setup.sh (npm install of gltf-validator)";
+  std::string dir = temp_dir("validator");
+  for (const char* kind : {"tree", "bush", "conifer"}) {
+    std::string glb = dir + "/" + kind + ".glb";
+    ASSERT_EQ(run_sylva(std::string("sample ") + kind + " --leaves 300 -o " + glb).status, 0);
+    std::string cmd = "node " + validator + " " + glb + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buf[4096];
+    std::string out;
+    while (fgets(buf, sizeof buf, pipe)) out += buf;
+    int status = pclose(pipe);
+    EXPECT_EQ(status, 0) << kind << ": " << out;
+    EXPECT_NE(out.find("errors=0"), std::string::npos) << kind << ": " << out;
+  }
+}
+
+}  // namespace
+}  // namespace sylva::test

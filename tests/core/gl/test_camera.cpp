@@ -1,1 +1,158 @@
-// placeholder until implemented
+// Orbit camera: eye placement convention, automatic framing, option validation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "core/gl/camera.h"
+
+namespace sylva {
+namespace {
+
+Bounds box(glm::vec3 lo, glm::vec3 hi) {
+  Bounds b;
+  b.extend(lo);
+  b.extend(hi);
+  return b;
+}
+
+OrbitParams orbit(float az, float el) {
+  OrbitParams p;
+  p.azimuth_deg = az;
+  p.elevation_deg = el;
+  return p;
+}
+
+std::string where_of(const Bounds& b, const OrbitParams& p, int w, int h) {
+  try {
+    make_orbit_camera(b, p, w, h);
+  } catch (const InputError& e) {
+    return e.where();
+  }
+  return "";
+}
+
+TEST(Camera, AzimuthZeroLooksFromPlusZ) {
+  const Bounds b = box({-1, -2, -3}, {3, 2, 1});  // centre (1, 0, -1)
+  const Camera c = make_orbit_camera(b, orbit(0, 0), 100, 100);
+  const glm::vec3 rel = c.eye - b.center();
+  EXPECT_GT(rel.z, 0.0f);
+  EXPECT_NEAR(rel.x, 0.0f, 1e-4f);
+  EXPECT_NEAR(rel.y, 0.0f, 1e-4f);
+  // The centre is straight ahead: view space (0, 0, -distance).
+  const glm::vec4 v = c.view * glm::vec4(b.center(), 1.0f);
+  EXPECT_NEAR(v.x, 0.0f, 1e-4f);
+  EXPECT_NEAR(v.y, 0.0f, 1e-4f);
+  EXPECT_NEAR(-v.z, glm::length(rel), 1e-4f);
+}
+
+TEST(Camera, Azimuth90IsOnPlusX) {
+  const Bounds b = box({-1, -1, -1}, {1, 1, 1});
+  const Camera c = make_orbit_camera(b, orbit(90, 0), 100, 100);
+  EXPECT_GT(c.eye.x, 0.0f);
+  EXPECT_NEAR(c.eye.z, 0.0f, 1e-4f);
+  EXPECT_NEAR(c.eye.y, 0.0f, 1e-4f);
+}
+
+TEST(Camera, Elevation45IsAbove) {
+  const Bounds b = box({-1, -1, -1}, {1, 1, 1});
+  const Camera c = make_orbit_camera(b, orbit(0, 45), 100, 100);
+  const float d = glm::length(c.eye);
+  EXPECT_NEAR(c.eye.y, d * std::sqrt(0.5f), 1e-4f * d);
+  EXPECT_NEAR(c.eye.z, d * std::sqrt(0.5f), 1e-4f * d);
+  // Up stays up: the world +Y axis projects upward on screen.
+  const glm::vec4 up = c.view * glm::vec4(0, 1, 0, 0);
+  EXPECT_GT(up.y, 0.0f);
+}
+
+TEST(Camera, ExplicitDistanceIsUsed) {
+  const Bounds b = box({-1, -1, -1}, {1, 1, 1});
+  OrbitParams p = orbit(10, 20);
+  p.distance = 7.5f;
+  const Camera c = make_orbit_camera(b, p, 64, 64);
+  EXPECT_NEAR(glm::length(c.eye - b.center()), 7.5f, 1e-4f);
+  EXPECT_GT(c.near_plane, 0.0f);
+  EXPECT_LT(c.near_plane, 7.5f - std::sqrt(3.0f));
+  EXPECT_GT(c.far_plane, 7.5f + std::sqrt(3.0f));
+}
+
+// Every corner of the bounds must land inside NDC for any view direction, fov, aspect and
+// projection; the framing is also not wastefully loose.
+TEST(Camera, AutoFramingKeepsCornersInside) {
+  const Bounds b = box({-0.3f, 0.0f, -2.0f}, {0.7f, 5.0f, 1.0f});
+  const int sizes[][2] = {{256, 256}, {640, 240}, {200, 700}};
+  for (bool ortho : {false, true}) {
+    for (float fov : {10.0f, 35.0f, 90.0f, 150.0f}) {
+      for (auto size : sizes) {
+        for (float az : {0.0f, 37.0f, 145.0f, -100.0f}) {
+          for (float el : {-89.0f, -30.0f, 0.0f, 60.0f, 89.0f}) {
+            OrbitParams p = orbit(az, el);
+            p.fov_deg = fov;
+            p.ortho = ortho;
+            const Camera c = make_orbit_camera(b, p, size[0], size[1]);
+            float extent = 0.0f;
+            for (int i = 0; i < 8; ++i) {
+              const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                     (i & 4) ? b.max.z : b.min.z);
+              const glm::vec4 clip = c.proj * c.view * glm::vec4(corner, 1.0f);
+              ASSERT_GT(clip.w, 0.0f);
+              const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+              for (int k = 0; k < 3; ++k) {
+                ASSERT_LE(std::abs(ndc[k]), 1.0f)
+                    << "axis " << k << " ortho " << ortho << " fov " << fov << " az " << az
+                    << " el " << el << " size " << size[0] << "x" << size[1];
+              }
+              extent = std::max({extent, std::abs(ndc.x), std::abs(ndc.y)});
+            }
+            EXPECT_GT(extent, 0.3f) << "framing far too loose";
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Camera, InvalidValuesThrow) {
+  const Bounds b = box({-1, -1, -1}, {1, 1, 1});
+  EXPECT_EQ(where_of(b, orbit(0, 89.5f), 64, 64), "--elevation");
+  EXPECT_EQ(where_of(b, orbit(0, -90.0f), 64, 64), "--elevation");
+  EXPECT_EQ(where_of(b, orbit(0, NAN), 64, 64), "--elevation");
+  EXPECT_EQ(where_of(b, orbit(INFINITY, 0), 64, 64), "--azimuth");
+  OrbitParams p = orbit(0, 0);
+  p.fov_deg = 0.5f;
+  EXPECT_EQ(where_of(b, p, 64, 64), "--fov");
+  p.fov_deg = 151.0f;
+  EXPECT_EQ(where_of(b, p, 64, 64), "--fov");
+  p = orbit(0, 0);
+  p.distance = -1.0f;
+  EXPECT_EQ(where_of(b, p, 64, 64), "--distance");
+  p.distance = INFINITY;
+  EXPECT_EQ(where_of(b, p, 64, 64), "--distance");
+  EXPECT_EQ(where_of(b, orbit(0, 0), 0, 64), "--size");
+  EXPECT_EQ(where_of(b, orbit(0, 0), 64, 16385), "--size");
+  EXPECT_EQ(where_of(Bounds{}, orbit(0, 0), 64, 64), "scene");
+  // The ends of each range are valid.
+  EXPECT_EQ(where_of(b, orbit(-720, -89), 1, 16384), "");
+  p = orbit(0, 89);
+  p.fov_deg = 150.0f;
+  EXPECT_EQ(where_of(b, p, 16384, 1), "");
+  p.fov_deg = 1.0f;
+  EXPECT_EQ(where_of(b, p, 16384, 1), "");
+}
+
+TEST(Camera, SinglePointBoundsStaysFinite) {
+  const Bounds b = box({2, 3, 4}, {2, 3, 4});
+  const Camera c = make_orbit_camera(b, orbit(0, 0), 32, 32);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_TRUE(std::isfinite(c.proj[i][j]));
+      EXPECT_TRUE(std::isfinite(c.view[i][j]));
+    }
+  }
+  EXPECT_LT(c.near_plane, c.far_plane);
+}
+
+}  // namespace
+}  // namespace sylva
