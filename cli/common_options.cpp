@@ -54,6 +54,10 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--background", o.background, "white, black, transparent or #RRGGBB")
       ->capture_default_str();
   cmd.add_option("--ambient", o.ambient, "Ambient light intensity, [0, 1]")->capture_default_str();
+  cmd.add_option("--light", o.lights,
+                 "A light, repeatable up to 8, replacing the default three: "
+                 "dir|point:X,Y,Z[:INTENSITY[:camera|scene]] (direction toward the light or "
+                 "position; camera = view space)");
 }
 
 void parse_size(const std::string& s, int& width, int& height) {
@@ -83,6 +87,33 @@ glm::vec4 parse_background(const std::string& s) {
   return {lin((v >> 16) & 255), lin((v >> 8) & 255), lin(v & 255), 1.0f};
 }
 
+Light parse_light(const std::string& spec) {
+  static const std::regex re(
+      R"(^(dir|point):([-+0-9.eE]+),([-+0-9.eE]+),([-+0-9.eE]+)(?::([-+0-9.eE]+))?(?::(camera|scene))?$)");
+  std::smatch m;
+  if (!std::regex_match(spec, m, re))
+    throw InputError("--light", "expected dir|point:X,Y,Z[:INTENSITY[:camera|scene]], got '" +
+                                    spec + "'");
+  Light l;
+  l.type = m[1] == "dir" ? Light::Type::Directional : Light::Type::Point;
+  try {
+    l.vector = {std::stof(m[2]), std::stof(m[3]), std::stof(m[4])};
+    float intensity = m[5].matched ? std::stof(m[5]) : 1.0f;
+    if (!(intensity >= 0.0f && intensity <= 10.0f))
+      throw InputError("--light", "intensity must be in [0, 10] in '" + spec + "'");
+    l.color = glm::vec3(intensity);
+  } catch (const std::logic_error&) {
+    throw InputError("--light", "not a number in '" + spec + "'");
+  }
+  if (!std::isfinite(l.vector.x) || !std::isfinite(l.vector.y) || !std::isfinite(l.vector.z))
+    throw InputError("--light", "not a finite vector in '" + spec + "'");
+  if (l.type == Light::Type::Directional && glm::length(l.vector) < 1e-6f)
+    throw InputError("--light", "direction must not be zero in '" + spec + "'");
+  l.camera_fixed = !(m[6].matched && m[6] == "scene");
+  l.specular = 0.2f;
+  return l;
+}
+
 void resolve_view_options(ViewOptions& o) {
   parse_size(o.size, o.width, o.height);
   if (o.ssaa < 1 || o.ssaa > 4)
@@ -93,6 +124,8 @@ void resolve_view_options(ViewOptions& o) {
   if (!(o.ambient >= 0.0f && o.ambient <= 1.0f))
     throw InputError("--ambient", "must be in [0, 1]");
   parse_background(o.background);
+  if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
+  for (const std::string& l : o.lights) parse_light(l);
   if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object")
     throw InputError("--id", "expected primitive, cluster or object, got '" + o.id_kind + "'");
 }
@@ -109,6 +142,10 @@ RasterRequest raster_request(const ViewOptions& o) {
 
 Lighting lighting_for(const ViewOptions& o) {
   Lighting l = Lighting::three_point();
+  if (!o.lights.empty()) {
+    l.lights.clear();
+    for (const std::string& spec : o.lights) l.lights.push_back(parse_light(spec));
+  }
   l.ambient = o.ambient;
   return l;
 }

@@ -30,6 +30,7 @@ struct ViewOptions {
   std::string background = "white";
   float ambient = 0.35f;
   std::string id_kind = "primitive";
+  std::vector<std::string> lights;  // --light specs; empty = the three-light default
   int width = 0, height = 0;  // parsed from size
 };
 void add_view_options(CLI::App& cmd, ViewOptions& o);
@@ -40,6 +41,9 @@ Lighting lighting_for(const ViewOptions& o);
 
 // "WxH" or "N" (square); each in [1, 16384]. Throws InputError("--size", ...).
 void parse_size(const std::string& s, int& width, int& height);
+// "dir|point:X,Y,Z[:INTENSITY[:camera|scene]]"; intensity in [0, 10], default 1; camera-fixed
+// by default. Throws InputError("--light", ...).
+Light parse_light(const std::string& spec);
 // "white", "black", "transparent" or "#RRGGBB"; returns linear RGBA.
 glm::vec4 parse_background(const std::string& s);
 

@@ -1,1 +1,155 @@
-// placeholder until implemented
+#include "npr/leaf_clusters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/core.hpp>
+
+#include "core/error.h"
+#include "core/scene/load.h"
+
+namespace sylva {
+namespace {
+
+// Leaves are the foliage primitives, in primitive-id order (the order Hierarchy::leaf_branch
+// uses). leaf_of[id] is the leaf index of primitive `id`, or -1.
+struct Leaves {
+  std::vector<int32_t> leaf_of;
+  size_t count = 0;
+};
+
+Leaves find_leaves(const Scene& scene) {
+  Leaves leaves;
+  leaves.leaf_of.assign(size_t(scene.max_primitive_id()) + 1, -1);
+  std::vector<char> foliage(leaves.leaf_of.size(), 0);
+  for (const Mesh& mesh : scene.meshes)
+    for (size_t t = 0; t < mesh.triangle_count(); ++t)
+      if (mesh.roles[t] == Role::Foliage) foliage[mesh.primitive_ids[t]] = 1;
+  for (size_t id = 1; id < foliage.size(); ++id)
+    if (foliage[id]) leaves.leaf_of[id] = int32_t(leaves.count++);
+  return leaves;
+}
+
+// Dudley §3.2: walk up from the leaf's branch while the parent is still thinner than the
+// division diameter; the last branch reached roots the cluster.
+std::vector<int32_t> hierarchy_labels(const Hierarchy& h, float division) {
+  std::vector<int32_t> root_of(h.leaf_branch.size());
+  for (size_t l = 0; l < h.leaf_branch.size(); ++l) {
+    int32_t root = h.leaf_branch[l];
+    if (h.branch_diameter[size_t(root)] < division) {
+      for (size_t steps = 0; steps < h.branch_parent.size(); ++steps) {  // bounded: no cycles
+        const int32_t p = h.branch_parent[size_t(root)];
+        if (p < 0 || !(h.branch_diameter[size_t(p)] < division)) break;
+        root = p;
+      }
+    }
+    root_of[l] = root;
+  }
+  return root_of;
+}
+
+std::vector<int32_t> kmeans_labels(const Scene& scene, const Leaves& leaves, int k, uint64_t seed) {
+  cv::Mat points = cv::Mat::zeros(int(leaves.count), 3, CV_32F);
+  std::vector<int> weight(leaves.count, 0);
+  for (const Mesh& mesh : scene.meshes) {
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const int32_t l = leaves.leaf_of[mesh.primitive_ids[t]];
+      if (l < 0 || mesh.roles[t] != Role::Foliage) continue;
+      glm::vec3 c(0.0f);
+      for (int v = 0; v < 3; ++v)
+        c += mesh.positions[mesh.indices[3 * t + size_t(v)]] / 3.0f;
+      for (int d = 0; d < 3; ++d)
+        points.at<float>(l, d) += c[d];
+      ++weight[size_t(l)];
+    }
+  }
+  for (size_t l = 0; l < leaves.count; ++l)
+    for (int d = 0; d < 3; ++d)
+      points.at<float>(int(l), d) /= float(std::max(weight[l], 1));
+  std::vector<int32_t> labels(leaves.count, 0);
+  if (k <= 1) return labels;
+  cv::RNG& rng = cv::theRNG();
+  const uint64 saved = rng.state;
+  rng.state = seed ? seed : 0xffffffffu;  // cv::RNG treats state 0 as this value too
+  cv::Mat out;
+  cv::kmeans(points, k, out,
+             cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-6), 3,
+             cv::KMEANS_PP_CENTERS);
+  rng.state = saved;
+  for (size_t l = 0; l < leaves.count; ++l)
+    labels[l] = out.at<int>(int(l));
+  return labels;
+}
+
+float median_diameter(std::vector<float> d) {
+  if (d.empty()) return 0.0f;
+  std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
+std::string format(const char* fmt, double a) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, fmt, a);
+  return buf;
+}
+
+}  // namespace
+
+void assign_clusters(Scene& scene, const ClusterOptions& options) {
+  if (options.clusters < 0 || options.clusters > 4096)
+    throw InputError("--clusters", "must be in [0, 4096], got " + std::to_string(options.clusters));
+  if (!std::isfinite(options.division_diameter) || options.division_diameter < 0.0f)
+    throw InputError("--division-diameter", "must be a finite value >= 0 (scene units)");
+  for (const Mesh& mesh : scene.meshes)
+    SYLVA_CHECK(mesh.roles.size() == mesh.triangle_count() &&
+                    mesh.primitive_ids.size() == mesh.triangle_count(),
+                "assign_clusters needs roles and primitive ids (finish_scene)");
+
+  const Leaves leaves = find_leaves(scene);
+  const Hierarchy& h = scene.hierarchy;
+  std::vector<int32_t> labels;
+  if (options.use_hierarchy && !h.empty() && leaves.count > 0) {
+    validate_hierarchy(h, "sylva_hierarchy");
+    if (h.leaf_branch.size() == leaves.count) {
+      const float division = options.division_diameter > 0.0f ? options.division_diameter
+                                                              : median_diameter(h.branch_diameter);
+      labels = hierarchy_labels(h, division);
+      scene.report.cluster_method = format("hierarchy (division diameter %g)", division);
+    } else {
+      scene.report.warnings.push_back("hierarchy has " + std::to_string(h.leaf_branch.size()) +
+                                      " leaves but the scene has " + std::to_string(leaves.count) +
+                                      "; using k-means");
+    }
+  }
+  if (labels.empty() && leaves.count > 0) {
+    int k = options.clusters;
+    if (k == 0) k = int(std::lround(std::sqrt(double(leaves.count) / 2.0)));
+    k = std::clamp(k, 1, options.clusters == 0 ? 64 : 4096);
+    k = std::min<int>(k, int(leaves.count));
+    labels = kmeans_labels(scene, leaves, k, options.seed);
+    scene.report.cluster_method =
+        "k-means (k=" + std::to_string(k) + ", seed " + std::to_string(options.seed) + ")";
+  }
+  if (leaves.count == 0) scene.report.cluster_method = "none (no foliage)";
+
+  // Renumber by first appearance over leaves so ids do not depend on label values.
+  std::vector<uint32_t> id_of_label;
+  std::vector<uint32_t> leaf_cluster(leaves.count);
+  uint32_t clusters = 0;
+  for (size_t l = 0; l < leaves.count; ++l) {
+    const size_t label = size_t(labels[l]);
+    if (label >= id_of_label.size()) id_of_label.resize(label + 1, 0);
+    if (id_of_label[label] == 0) id_of_label[label] = ++clusters;
+    leaf_cluster[l] = id_of_label[label];
+  }
+  for (Mesh& mesh : scene.meshes) {
+    mesh.cluster_ids.resize(mesh.triangle_count());
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const int32_t l = leaves.leaf_of[mesh.primitive_ids[t]];
+      mesh.cluster_ids[t] =
+          mesh.roles[t] == Role::Foliage && l >= 0 ? leaf_cluster[size_t(l)] : clusters + 1;
+    }
+  }
+}
+
+}  // namespace sylva

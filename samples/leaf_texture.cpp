@@ -33,7 +33,9 @@ float texel_noise(int x, int y) {
   return static_cast<float>(h & 0xffff) / 32767.5f - 1.0f;
 }
 
-uint8_t to_byte(float v) { return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
+uint8_t to_byte(float v) {
+  return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+}
 
 // Blade outline in physical leaf coordinates: x across (0 = midrib), y along (0 = petiole
 // end, 1 = tip). Returns the half-width of the blade at y (0 outside the blade).

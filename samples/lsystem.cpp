@@ -26,8 +26,12 @@ glm::vec3 any_perpendicular(const glm::vec3& d) {
 
 // Uniform [0, 1) from the generator (24 bits; not std::uniform_real_distribution, whose
 // output differs between standard libraries).
-float unit(std::mt19937_64& g) { return static_cast<float>(g() >> 40) * (1.0f / 16777216.0f); }
-float signed_unit(std::mt19937_64& g) { return 2.0f * unit(g) - 1.0f; }
+float unit(std::mt19937_64& g) {
+  return static_cast<float>(g() >> 40) * (1.0f / 16777216.0f);
+}
+float signed_unit(std::mt19937_64& g) {
+  return 2.0f * unit(g) - 1.0f;
+}
 
 }  // namespace
 
@@ -179,17 +183,22 @@ void emit_leaves(const Skeleton& s, const LeafStyle& style, uint64_t seed, Mesh&
         if (glm::dot(n0, world_up) < 0.0f) n0 = -n0;
         glm::vec3 n_up = world_up - d * glm::dot(world_up, d);
         float n_up_len = glm::length(n_up);
-        glm::vec3 n = n_up_len > 1e-3f ? glm::normalize(n0 + (n_up / n_up_len - n0) * style.face_up)
-                                       : n0;
+        glm::vec3 n = n0;
+        if (n_up_len > 1e-3f) {
+          const glm::vec3 blend = n0 + (n_up / n_up_len - n0) * style.face_up;
+          if (glm::length(blend) > 1e-3f) n = glm::normalize(blend);
+        }
         n = glm::normalize(rotate(n, d, signed_unit(rng) * angle_jitter));
         const glm::vec3 side = glm::normalize(glm::cross(d, n));
         const float len = style.length * (1.0f + style.jitter * signed_unit(rng));
         const glm::vec3 half = side * (0.5f * len * style.aspect);
         const glm::vec3 tip = p + d * len;
         const uint32_t base = static_cast<uint32_t>(leaves.positions.size());
-        leaves.positions.insert(leaves.positions.end(), {p - half, p + half, tip + half, tip - half});
+        leaves.positions.insert(leaves.positions.end(),
+                                {p - half, p + half, tip + half, tip - half});
         leaves.normals.insert(leaves.normals.end(), {n, n, n, n});
-        leaves.uvs.insert(leaves.uvs.end(), {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}});
+        leaves.uvs.insert(leaves.uvs.end(),
+                          {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}});
         leaves.indices.insert(leaves.indices.end(),
                               {base, base + 1, base + 2, base, base + 2, base + 3});
         leaf_branch.push_back(in.branch);
@@ -199,8 +208,9 @@ void emit_leaves(const Skeleton& s, const LeafStyle& style, uint64_t seed, Mesh&
 }
 
 void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thick_diameter,
-               Mesh& bark) {
+               uint32_t first_id, Mesh& bark) {
   SYLVA_CHECK(diameters.size() == s.internodes.size(), "one diameter per internode");
+  uint32_t id = first_id;
   for (const Branch& b : s.branches) {
     if (b.count <= 0) continue;
     const int sides = diameters[b.first] >= thick_diameter ? 8 : 6;
@@ -217,8 +227,8 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
         glm::vec3 both = s.internodes[b.first + k - 1].heading() + dir;
         if (glm::length(both) > 1e-4f) dir = glm::normalize(both);
       }
-      const float ring_d = k < b.count ? diameters[b.first + k]
-                                       : 0.6f * diameters[b.first + b.count - 1];
+      const float ring_d =
+          k < b.count ? diameters[b.first + k] : 0.6f * diameters[b.first + b.count - 1];
       const float radius = 0.5f * ring_d;
       if (k == 0) ref = cur.up;
       ref -= dir * glm::dot(ref, dir);
@@ -249,6 +259,7 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
     const uint32_t apex = last_ring + stride;
     for (int j = 0; j < sides; ++j)
       bark.indices.insert(bark.indices.end(), {last_ring + j, last_ring + j + 1, apex});
+    bark.primitive_ids.resize(bark.indices.size() / 3, id++);
   }
 }
 

@@ -21,7 +21,9 @@ uint64_t mix_key(uint64_t key, uint64_t salt);
 // Uniform in [0, 1) with 24-bit resolution, from a key.
 float key_unit(uint64_t key);
 // Uniform in [-1, 1), from a key.
-inline float key_signed(uint64_t key) { return 2.0f * key_unit(key) - 1.0f; }
+inline float key_signed(uint64_t key) {
+  return 2.0f * key_unit(key) - 1.0f;
+}
 
 // The turtle state (ABOP): position and an orthonormal frame. Angles in radians.
 struct Turtle {
@@ -120,8 +122,9 @@ void emit_leaves(const Skeleton& s, const LeafStyle& style, uint64_t seed, Mesh&
 // sides where the branch base diameter >= `thick_diameter` (scene units), else 6; smooth
 // radial normals, UVs u around (seam duplicated), v along (1 per circumference of the
 // base); the tip closed by a short cone, the base open. Ring diameters from `diameters`
-// (pipe_diameters), the tip ring at 60% of the last.
+// (pipe_diameters), the tip ring at 60% of the last. Appends per-triangle primitive ids:
+// branch k (k-th non-empty branch) gets `first_id + k`.
 void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thick_diameter,
-               Mesh& bark);
+               uint32_t first_id, Mesh& bark);
 
 }  // namespace sylva

@@ -17,9 +17,9 @@ namespace {
 
 constexpr int kSlots = 6;  // colour attachments, one per Target in kAllTargets order
 
-// Attachment formats: colour is sRGB-encoded by the shader into plain RGBA8 (so blending
-// and SSAA see the stored bytes); normals need ~1e-3 precision only (RGBA16F); depth,
-// position and ka stay 32-bit float; ids are 32-bit unsigned.
+// Attachment formats: colour is sRGB-encoded by the shader into plain RGBA8 (SSAA decodes
+// it to average in linear light); normals, depth, position and ka are 32-bit float (llvmpipe
+// truncates to half floats, which left normals ~0.1% short); ids are 32-bit unsigned.
 struct SlotFormat {
   GLenum internal_format;
   GLenum read_format;
@@ -32,7 +32,7 @@ SlotFormat slot_format(Target t) {
     case Target::Color:
       return {GL_RGBA8, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4};
     case Target::Normal:
-      return {GL_RGBA16F, GL_RGB, GL_FLOAT, CV_32FC3};
+      return {GL_RGBA32F, GL_RGB, GL_FLOAT, CV_32FC3};
     case Target::Depth:
       return {GL_R32F, GL_RED, GL_FLOAT, CV_32FC1};
     case Target::Position:
@@ -59,11 +59,14 @@ struct GpuMesh {
   bool has_normals = false;
 };
 
+// libOSMesa exports GL 4.5 but not its direct-state-access entry points, so objects are
+// edited through bindings.
 template <typename T>
-GLuint make_buffer(const std::vector<T>& data) {
+GLuint make_buffer(GLenum target, const std::vector<T>& data) {
   GLuint buffer = 0;
-  glCreateBuffers(1, &buffer);
-  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), 0);
+  glGenBuffers(1, &buffer);
+  glBindBuffer(target, buffer);
+  glBufferStorage(target, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), 0);
   return buffer;
 }
 
@@ -107,34 +110,33 @@ GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
   g.object_id = object_id;
   g.index_count = static_cast<GLsizei>(nt * 3);
   g.has_normals = !mesh.normals.empty();
-  glCreateVertexArrays(1, &g.vao);
-  auto attach = [&](GLuint buffer, GLuint location, GLint size, GLenum type, GLsizei stride,
-                    bool integer) {
+  glGenVertexArrays(1, &g.vao);
+  glBindVertexArray(g.vao);
+  auto attach = [&](GLuint buffer, GLuint location, GLint size, GLenum type, bool integer) {
     g.buffers.push_back(buffer);
-    glVertexArrayVertexBuffer(g.vao, location, buffer, 0, stride);
     if (integer) {
-      glVertexArrayAttribIFormat(g.vao, location, size, type, 0);
+      glVertexAttribIPointer(location, size, type, 0, nullptr);
     } else {
-      glVertexArrayAttribFormat(g.vao, location, size, type, GL_FALSE, 0);
+      glVertexAttribPointer(location, size, type, GL_FALSE, 0, nullptr);
     }
-    glVertexArrayAttribBinding(g.vao, location, location);
-    glEnableVertexArrayAttrib(g.vao, location);
+    glEnableVertexAttribArray(location);
   };
-  attach(make_buffer(mesh.positions), kAttribPosition, 3, GL_FLOAT, sizeof(glm::vec3), false);
+  attach(make_buffer(GL_ARRAY_BUFFER, mesh.positions), kAttribPosition, 3, GL_FLOAT, false);
   if (!mesh.normals.empty()) {
-    attach(make_buffer(mesh.normals), kAttribNormal, 3, GL_FLOAT, sizeof(glm::vec3), false);
+    attach(make_buffer(GL_ARRAY_BUFFER, mesh.normals), kAttribNormal, 3, GL_FLOAT, false);
   }
   if (!mesh.uvs.empty()) {
-    attach(make_buffer(mesh.uvs), kAttribUv, 2, GL_FLOAT, sizeof(glm::vec2), false);
+    attach(make_buffer(GL_ARRAY_BUFFER, mesh.uvs), kAttribUv, 2, GL_FLOAT, false);
   }
   if (!mesh.colors.empty()) {
-    attach(make_buffer(mesh.colors), kAttribColor, 4, GL_FLOAT, sizeof(glm::vec4), false);
+    attach(make_buffer(GL_ARRAY_BUFFER, mesh.colors), kAttribColor, 4, GL_FLOAT, false);
   }
-  attach(make_buffer(ids), kAttribIds, 2, GL_UNSIGNED_INT, 2 * sizeof(uint32_t), true);
-  attach(make_buffer(roles), kAttribRole, 1, GL_UNSIGNED_BYTE, 1, true);
-  const GLuint index_buffer = make_buffer(mesh.indices);
-  g.buffers.push_back(index_buffer);
-  glVertexArrayElementBuffer(g.vao, index_buffer);
+  attach(make_buffer(GL_ARRAY_BUFFER, ids), kAttribIds, 2, GL_UNSIGNED_INT, true);
+  attach(make_buffer(GL_ARRAY_BUFFER, roles), kAttribRole, 1, GL_UNSIGNED_BYTE, true);
+  // The element-array binding is VAO state: bound while the VAO is.
+  g.buffers.push_back(make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   return g;
 }
 
@@ -147,17 +149,30 @@ GLuint upload_texture(const Texture& tex) {
   while ((std::max(tex.width, tex.height) >> levels) > 0)
     ++levels;
   GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &id);
-  glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, tex.width, tex.height);
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, tex.width, tex.height);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   // Rows go in top first: GL's t = 0 is then the image top, which is glTF's v = 0.
-  glTextureSubImage2D(id, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
-                      tex.rgba.data());
-  glGenerateTextureMipmap(id);
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                  tex.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return id;
+}
+
+GLuint make_target_texture(GLenum internal_format, int width, int height) {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
   return id;
 }
 
@@ -220,22 +235,23 @@ struct Rasterizer::Impl {
   void ensure_fbo(int width, int height, TargetMask targets) {
     if (fbo && width == fbo_width && height == fbo_height && targets == fbo_targets) return;
     release_fbo();
-    glCreateFramebuffers(1, &fbo);
-    glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
-    glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, width, height);
-    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_texture, 0);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    depth_texture = make_target_texture(GL_DEPTH_COMPONENT32F, width, height);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture, 0);
     std::array<GLenum, kSlots> draw_buffers{};
     for (int i = 0; i < kSlots; ++i) {
       draw_buffers[i] = GL_NONE;
       if (!has(targets, kAllTargets[i])) continue;
-      glCreateTextures(GL_TEXTURE_2D, 1, &slot_textures[i]);
-      glTextureStorage2D(slot_textures[i], 1, slot_format(kAllTargets[i]).internal_format, width,
-                         height);
-      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, slot_textures[i], 0);
+      slot_textures[i] =
+          make_target_texture(slot_format(kAllTargets[i]).internal_format, width, height);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
+                             slot_textures[i], 0);
       draw_buffers[i] = GL_COLOR_ATTACHMENT0 + i;
     }
-    glNamedFramebufferDrawBuffers(fbo, kSlots, draw_buffers.data());
-    const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    glDrawBuffers(kSlots, draw_buffers.data());
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       release_fbo();
       throw std::runtime_error("raster pass: framebuffer incomplete (status " +
@@ -252,18 +268,18 @@ struct Rasterizer::Impl {
       if (!has(fbo_targets, t)) continue;
       if (t == Target::Id) {
         const GLuint zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferuiv(fbo, GL_COLOR, i, zero);
+        glClearBufferuiv(GL_COLOR, i, zero);
       } else if (t == Target::Color) {
         const GLfloat c[4] = {srgb_encode(background.r), srgb_encode(background.g),
                               srgb_encode(background.b), std::clamp(background.a, 0.0f, 1.0f)};
-        glClearNamedFramebufferfv(fbo, GL_COLOR, i, c);
+        glClearBufferfv(GL_COLOR, i, c);
       } else {
         const GLfloat zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(fbo, GL_COLOR, i, zero);
+        glClearBufferfv(GL_COLOR, i, zero);
       }
     }
     const GLfloat far_depth = 1.0f;
-    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+    glClearBufferfv(GL_DEPTH, 0, &far_depth);
   }
 
   void set_frame_uniforms(const RasterProgram& p, const Camera& camera, const Lighting& lighting,
@@ -313,7 +329,7 @@ struct Rasterizer::Impl {
       glUniform1f(p.alpha_cutoff, cutoff);
       glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
       glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
-      if (has_texture) glBindTextureUnit(0, textures[mat.base_color_texture]);
+      if (has_texture) glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
       if (mat.double_sided) {
         glDisable(GL_CULL_FACE);
       } else {
@@ -332,7 +348,7 @@ struct Rasterizer::Impl {
   cv::Mat read_slot(int slot) const {
     const SlotFormat f = slot_format(kAllTargets[slot]);
     cv::Mat m(fbo_height, fbo_width, f.cv_type);
-    glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0 + slot);
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + slot);
     glReadPixels(0, 0, fbo_width, fbo_height, f.read_format, f.read_type, m.data);
     return m;
   }
@@ -435,7 +451,8 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glDepthMask(GL_TRUE);
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
-  s.clear(request.background);
+  glActiveTexture(GL_TEXTURE0);
+  s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.set_frame_uniforms(p, camera, lighting, request.id_kind);
   s.draw_meshes(p);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

@@ -10,13 +10,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <variant>
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/scene/gltf_accessor.h"
 #include "core/scene/load.h"
+#include "core/scene/texture_decode.h"
 
 namespace sylva {
 namespace {
@@ -89,7 +89,7 @@ Role parse_role(const Json& extras, bool& found) {
 class Reader {
  public:
   Reader(const std::string& path, const tinygltf::Model& model, const Json& json)
-      : m_path(path), m_model(model), m_json(json) {}
+      : m_path(path), m_model(model), m_json(json), m_accessors(model, path) {}
 
   Scene read() {
     read_materials();
@@ -100,129 +100,6 @@ class Reader {
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(m_path, what); }
-
-  // Reads any accessor as floats (normalized integers mapped to [0,1] / [-1,1]); returns
-  // count * components values. Every offset is checked against the buffer.
-  std::vector<float> floats(int index, int& components, const char* what) const {
-    const tinygltf::Accessor& acc = accessor(index, what);
-    components = tinygltf::GetNumComponentsInType(uint32_t(acc.type));
-    const int csize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
-    if (components <= 0 || csize <= 0)
-      fail(std::string("accessor ") + std::to_string(index) + " (" + what +
-           ") has an invalid type");
-    std::vector<float> out(acc.count * size_t(components), 0.0f);
-    if (acc.bufferView < 0) return out;  // glTF: no bufferView means all zeros
-    const size_t elem = size_t(components) * size_t(csize);
-    const unsigned char* base = data(acc, elem, what, index);
-    const size_t stride = stride_of(acc, elem);
-    for (size_t i = 0; i < acc.count; ++i) {
-      for (int c = 0; c < components; ++c) {
-        const unsigned char* p = base + i * stride + size_t(c) * size_t(csize);
-        out[i * size_t(components) + size_t(c)] = component(p, acc.componentType, acc.normalized);
-      }
-    }
-    for (float v : out)
-      if (!std::isfinite(v))
-        fail("accessor " + std::to_string(index) + " (" + what + ") has NaN or infinite values");
-    return out;
-  }
-
-  std::vector<uint32_t> indices(int index) const {
-    const tinygltf::Accessor& acc = accessor(index, "indices");
-    const int ct = acc.componentType;
-    if (acc.type != TINYGLTF_TYPE_SCALAR || (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                                             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                                             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-      fail("accessor " + std::to_string(index) + " (indices) must be unsigned 8/16/32-bit scalars");
-    std::vector<uint32_t> out(acc.count, 0u);
-    if (acc.bufferView < 0) return out;
-    const size_t csize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(ct)));
-    const unsigned char* base = data(acc, csize, "indices", index);
-    const size_t stride = stride_of(acc, csize);
-    for (size_t i = 0; i < acc.count; ++i) {
-      const unsigned char* p = base + i * stride;
-      if (csize == 1)
-        out[i] = *p;
-      else if (csize == 2) {
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        out[i] = v;
-      } else
-        std::memcpy(&out[i], p, 4);
-    }
-    return out;
-  }
-
-  const tinygltf::Accessor& accessor(int index, const char* what) const {
-    if (index < 0 || size_t(index) >= m_model.accessors.size())
-      fail(std::string("accessor ") + std::to_string(index) + " (" + what + ") does not exist");
-    const tinygltf::Accessor& acc = m_model.accessors[size_t(index)];
-    if (acc.sparse.isSparse)
-      fail("accessor " + std::to_string(index) + " is sparse; sparse accessors are not supported");
-    return acc;
-  }
-
-  size_t stride_of(const tinygltf::Accessor& acc, size_t elem) const {
-    const size_t s = m_model.bufferViews[size_t(acc.bufferView)].byteStride;
-    return s == 0 ? elem : s;
-  }
-
-  const unsigned char* data(const tinygltf::Accessor& acc, size_t elem, const char* what,
-                            int index) const {
-    const std::string where = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (size_t(acc.bufferView) >= m_model.bufferViews.size()) fail(where + ": no such bufferView");
-    const tinygltf::BufferView& view = m_model.bufferViews[size_t(acc.bufferView)];
-    if (view.buffer < 0 || size_t(view.buffer) >= m_model.buffers.size())
-      fail(where + ": bufferView refers to a missing buffer");
-    const size_t buffer_size = m_model.buffers[size_t(view.buffer)].data.size();
-    const size_t stride = view.byteStride == 0 ? elem : view.byteStride;
-    if (stride < elem) fail(where + ": byteStride is smaller than one element");
-    // In 64-bit unsigned arithmetic with every term bounded by the buffer size first, so a
-    // hostile count or offset cannot wrap around.
-    const uint64_t view_end = uint64_t(view.byteOffset) + uint64_t(view.byteLength);
-    if (view.byteOffset > buffer_size || view.byteLength > buffer_size || view_end > buffer_size)
-      fail(where + ": bufferView runs past the end of its buffer");
-    if (acc.count == 0) return m_model.buffers[size_t(view.buffer)].data.data();
-    if (acc.count > buffer_size || acc.byteOffset > buffer_size)
-      fail(where + ": runs past the end of its bufferView");
-    const uint64_t end =
-        uint64_t(view.byteOffset) + acc.byteOffset + (acc.count - 1) * stride + elem;
-    if (end > view_end) fail(where + ": runs past the end of its bufferView");
-    return m_model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + acc.byteOffset;
-  }
-
-  static float component(const unsigned char* p, int type, bool normalized) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float v;
-        std::memcpy(&v, p, 4);
-        return v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? *p / 255.0f : float(*p);
-      case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        const float v = float(int8_t(*p));
-        return normalized ? std::max(v / 127.0f, -1.0f) : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? v / 65535.0f : float(v);
-      }
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? std::max(v / 32767.0f, -1.0f) : float(v);
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t v;
-        std::memcpy(&v, p, 4);
-        return normalized ? float(v / 4294967295.0) : float(v);
-      }
-      default:
-        return 0.0f;
-    }
-  }
 
   void read_materials() {
     m_texture_of_image.assign(m_model.images.size(), -1);
@@ -267,58 +144,20 @@ class Reader {
     const tinygltf::Image& img = m_model.images[index];
     const std::string what =
         "image " + std::to_string(index) + (img.name.empty() ? "" : " '" + img.name + "'");
-    cv::Mat encoded;
-    if (img.bufferView >= 0) {
-      if (size_t(img.bufferView) >= m_model.bufferViews.size()) fail(what + ": no such bufferView");
-      const tinygltf::BufferView& view = m_model.bufferViews[size_t(img.bufferView)];
-      const size_t size = size_t(view.buffer) < m_model.buffers.size()
-                              ? m_model.buffers[size_t(view.buffer)].data.size()
-                              : 0;
-      if (view.byteOffset > size || view.byteLength > size - view.byteOffset)
-        fail(what + ": bufferView runs past the end of its buffer");
-      encoded = cv::Mat(1, int(view.byteLength), CV_8U,
-                        const_cast<unsigned char*>(
-                            m_model.buffers[size_t(view.buffer)].data.data() + view.byteOffset));
-    } else if (img.image.empty()) {
-      if (!img.uri.empty()) fail("missing texture file '" + img.uri + "' (" + what + ")");
-      fail(what + " has no data");
-    } else {
-      encoded =
-          cv::Mat(1, int(img.image.size()), CV_8U, const_cast<unsigned char*>(img.image.data()));
+    const std::string name = img.name.empty() ? img.uri : img.name;
+    if (img.bufferView < 0) {
+      if (img.image.empty() && !img.uri.empty())
+        fail("missing texture file '" + img.uri + "' (" + what + ")");
+      return decode_texture(img.image.data(), img.image.size(), name, m_path, what);
     }
-    cv::Mat m;
-    try {
-      m = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception&) {
-      m = cv::Mat();
-    }
-    if (m.empty()) fail(what + ": cannot decode the image (PNG or JPEG expected)");
-    if (m.depth() == CV_16U)
-      m.convertTo(m, CV_8U, 1.0 / 257.0);
-    else if (m.depth() != CV_8U)
-      m.convertTo(m, CV_8U, 255.0);
-    cv::Mat rgba;
-    if (m.channels() == 1)
-      cv::cvtColor(m, rgba, cv::COLOR_GRAY2RGBA);
-    else if (m.channels() == 3)
-      cv::cvtColor(m, rgba, cv::COLOR_BGR2RGBA);
-    else if (m.channels() == 4)
-      cv::cvtColor(m, rgba, cv::COLOR_BGRA2RGBA);
-    else {
-      // Two channels (grey + alpha): OpenCV has no conversion; spread by hand.
-      rgba.create(m.rows, m.cols, CV_8UC4);
-      for (int y = 0; y < m.rows; ++y)
-        for (int x = 0; x < m.cols; ++x) {
-          const cv::Vec2b g = m.at<cv::Vec2b>(y, x);
-          rgba.at<cv::Vec4b>(y, x) = cv::Vec4b(g[0], g[0], g[0], g[1]);
-        }
-    }
-    Texture t;
-    t.name = img.name.empty() ? img.uri : img.name;
-    t.width = rgba.cols;
-    t.height = rgba.rows;
-    t.rgba.assign(rgba.data, rgba.data + rgba.total() * 4);
-    return t;
+    if (size_t(img.bufferView) >= m_model.bufferViews.size()) fail(what + ": no such bufferView");
+    const tinygltf::BufferView& view = m_model.bufferViews[size_t(img.bufferView)];
+    if (view.buffer < 0 || size_t(view.buffer) >= m_model.buffers.size())
+      fail(what + ": no such buffer");
+    const std::vector<unsigned char>& buffer = m_model.buffers[size_t(view.buffer)].data;
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+      fail(what + ": bufferView runs past the end of its buffer");
+    return decode_texture(buffer.data() + view.byteOffset, view.byteLength, name, m_path, what);
   }
 
   static glm::dmat4 local_matrix(const tinygltf::Node& node) {
@@ -419,7 +258,7 @@ class Reader {
         fail("mesh '" + name + "': material does not exist");
       int comps = 0;
       const std::string where = "mesh '" + name + "'";
-      std::vector<float> p = floats(pos->second, comps, "POSITION");
+      std::vector<float> p = m_accessors.floats(pos->second, comps, "POSITION");
       if (comps != 3) fail(where + ": POSITION must be VEC3");
       const size_t nv = p.size() / 3;
       mesh.positions.resize(nv);
@@ -427,7 +266,7 @@ class Reader {
         mesh.positions[v] =
             glm::vec3(world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0));
       if (auto a = prim.attributes.find("NORMAL"); a != prim.attributes.end()) {
-        std::vector<float> nrm = floats(a->second, comps, "NORMAL");
+        std::vector<float> nrm = m_accessors.floats(a->second, comps, "NORMAL");
         if (comps != 3 || nrm.size() != p.size())
           fail(where + ": NORMAL must be VEC3 with one per vertex");
         mesh.normals.resize(nv);
@@ -439,7 +278,7 @@ class Reader {
         }
       }
       if (auto a = prim.attributes.find("TEXCOORD_0"); a != prim.attributes.end()) {
-        std::vector<float> uv = floats(a->second, comps, "TEXCOORD_0");
+        std::vector<float> uv = m_accessors.floats(a->second, comps, "TEXCOORD_0");
         if (comps != 2 || uv.size() != nv * 2)
           fail(where + ": TEXCOORD_0 must be VEC2 with one per vertex");
         mesh.uvs.resize(nv);
@@ -447,7 +286,7 @@ class Reader {
           mesh.uvs[v] = glm::vec2(uv[2 * v], uv[2 * v + 1]);
       }
       if (auto a = prim.attributes.find("COLOR_0"); a != prim.attributes.end()) {
-        std::vector<float> c = floats(a->second, comps, "COLOR_0");
+        std::vector<float> c = m_accessors.floats(a->second, comps, "COLOR_0");
         if ((comps != 3 && comps != 4) || c.size() != nv * size_t(comps))
           fail(where + ": COLOR_0 must be VEC3 or VEC4 with one per vertex");
         mesh.colors.resize(nv);
@@ -457,7 +296,7 @@ class Reader {
       }
       std::vector<uint32_t> idx;
       if (prim.indices >= 0)
-        idx = indices(prim.indices);
+        idx = m_accessors.indices(prim.indices);
       else {
         idx.resize(nv);
         for (size_t v = 0; v < nv; ++v)
@@ -543,6 +382,7 @@ class Reader {
   const std::string& m_path;
   const tinygltf::Model& m_model;
   const Json& m_json;
+  GltfAccessorReader m_accessors;
   Scene m_scene;
   std::vector<int> m_texture_of_image;
 };

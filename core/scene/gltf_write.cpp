@@ -1,1 +1,230 @@
-// placeholder until implemented
+#include "core/scene/gltf_write.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "core/io/atomic_file.h"
+
+namespace sylva {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr int kFloat = 5126, kUShort = 5123, kUInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+// The BIN chunk and the bufferViews/accessors that point into it.
+class BinBuilder {
+ public:
+  int view(const void* data, size_t bytes, int target) {
+    while (m_bin.size() % 4)
+      m_bin.push_back('\0');  // glTF: views start 4-byte aligned
+    Json v = {{"buffer", 0}, {"byteOffset", m_bin.size()}, {"byteLength", bytes}};
+    if (target) v["target"] = target;
+    m_bin.append(static_cast<const char*>(data), bytes);
+    m_views.push_back(v);
+    return int(m_views.size() - 1);
+  }
+
+  int accessor(int view, int component_type, size_t count, const char* type) {
+    m_accessors.push_back({{"bufferView", view},
+                           {"componentType", component_type},
+                           {"count", count},
+                           {"type", type}});
+    return int(m_accessors.size() - 1);
+  }
+
+  template <typename T>
+  int attribute(const std::vector<T>& values, const char* type, bool with_bounds = false) {
+    const int a = accessor(view(values.data(), values.size() * sizeof(T), kArrayBuffer), kFloat,
+                           values.size(), type);
+    if (with_bounds) {  // required for POSITION
+      T lo = values[0], hi = values[0];
+      for (const T& v : values) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+      }
+      Json jmin = Json::array(), jmax = Json::array();
+      for (int c = 0; c < T::length(); ++c) {
+        jmin.push_back(lo[c]);
+        jmax.push_back(hi[c]);
+      }
+      m_accessors[size_t(a)]["min"] = jmin;
+      m_accessors[size_t(a)]["max"] = jmax;
+    }
+    return a;
+  }
+
+  int indices(const std::vector<uint32_t>& idx, uint32_t max_index) {
+    // 65535 is the primitive-restart value, so 16-bit indices stop one short of it.
+    if (max_index < 65535) {
+      std::vector<uint16_t> small(idx.begin(), idx.end());
+      return accessor(view(small.data(), small.size() * 2, kElementArrayBuffer), kUShort,
+                      small.size(), "SCALAR");
+    }
+    return accessor(view(idx.data(), idx.size() * 4, kElementArrayBuffer), kUInt, idx.size(),
+                    "SCALAR");
+  }
+
+  std::string& bin() { return m_bin; }
+  Json& views() { return m_views; }
+  Json& accessors() { return m_accessors; }
+
+ private:
+  std::string m_bin;
+  Json m_views = Json::array();
+  Json m_accessors = Json::array();
+};
+
+std::string encode_png(const Texture& tex, const std::string& path) {
+  cv::Mat rgba;
+  if (tex.width > 0 && tex.height > 0 && tex.rgba.size() == size_t(tex.width) * tex.height * 4)
+    rgba = cv::Mat(tex.height, tex.width, CV_8UC4, const_cast<uint8_t*>(tex.rgba.data()));
+  else
+    rgba = cv::Mat(1, 1, CV_8UC4, cv::Scalar(255, 255, 255, 255));  // keeps indices valid
+  cv::Mat bgra;
+  cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
+  std::vector<uint8_t> png;
+  if (!cv::imencode(".png", bgra, png))
+    throw InputError(path, "cannot write: PNG encoding of texture '" + tex.name + "' failed");
+  return std::string(png.begin(), png.end());
+}
+
+Json material_json(const Material& m) {
+  const glm::vec4 c = glm::clamp(m.base_color, 0.0f, 1.0f);
+  Json pbr = {
+      {"baseColorFactor", {c.r, c.g, c.b, c.a}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}};
+  if (m.base_color_texture >= 0) pbr["baseColorTexture"] = {{"index", m.base_color_texture}};
+  Json j = {{"name", m.name},
+            {"pbrMetallicRoughness", pbr},
+            {"alphaMode", alpha_mode_name(m.alpha_mode)}};
+  if (m.alpha_mode == AlphaMode::Mask) j["alphaCutoff"] = std::clamp(m.alpha_cutoff, 0.0f, 1.0f);
+  if (m.double_sided) j["doubleSided"] = true;
+  return j;
+}
+
+// One glTF mesh; one primitive per role (in order of first appearance) so roles survive.
+Json mesh_json(const Mesh& mesh, BinBuilder& bin) {
+  const size_t nv = mesh.positions.size();
+  Json attributes = {{"POSITION", bin.attribute(mesh.positions, "VEC3", true)}};
+  if (mesh.normals.size() == nv) {
+    std::vector<glm::vec3> unit(nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const float len = glm::length(mesh.normals[v]);
+      unit[v] = len > 0.0f && std::isfinite(len) ? mesh.normals[v] / len : glm::vec3(0, 0, 1);
+    }
+    attributes["NORMAL"] = bin.attribute(unit, "VEC3");
+  }
+  if (mesh.uvs.size() == nv) attributes["TEXCOORD_0"] = bin.attribute(mesh.uvs, "VEC2");
+  if (mesh.colors.size() == nv) attributes["COLOR_0"] = bin.attribute(mesh.colors, "VEC4");
+
+  const size_t nt = mesh.triangle_count();
+  const bool has_roles = mesh.roles.size() == nt;
+  std::vector<Role> order;
+  if (has_roles)
+    for (Role r : mesh.roles)
+      if (std::find(order.begin(), order.end(), r) == order.end()) order.push_back(r);
+  if (order.empty()) order.push_back(Role::Other);
+
+  Json primitives = Json::array();
+  for (Role role : order) {
+    std::vector<uint32_t> idx;
+    uint32_t max_index = 0;
+    for (size_t t = 0; t < nt; ++t) {
+      if (has_roles && mesh.roles[t] != role) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t i = mesh.indices[3 * t + size_t(k)];
+        SYLVA_CHECK(i < nv, "index out of range in write_glb");
+        idx.push_back(i);
+        max_index = std::max(max_index, i);
+      }
+    }
+    Json prim = {{"attributes", attributes}, {"indices", bin.indices(idx, max_index)}, {"mode", 4}};
+    if (mesh.material >= 0) prim["material"] = mesh.material;
+    if (has_roles && order.size() > 1) prim["extras"] = {{"sylva_role", role_name(role)}};
+    primitives.push_back(prim);
+  }
+  Json j = {{"name", mesh.name}, {"primitives", primitives}};
+  if (has_roles && order.size() == 1) j["extras"] = {{"sylva_role", role_name(order[0])}};
+  return j;
+}
+
+void append_chunk(std::string& out, const std::string& data, uint32_t type, char pad) {
+  std::string body = data;
+  while (body.size() % 4)
+    body.push_back(pad);
+  const uint32_t len = uint32_t(body.size());
+  out.append(reinterpret_cast<const char*>(&len), 4);
+  out.append(reinterpret_cast<const char*>(&type), 4);
+  out += body;
+}
+
+}  // namespace
+
+void write_glb(const Scene& scene, const std::string& path) {
+  BinBuilder bin;
+  Json gltf = {{"asset", {{"version", "2.0"}, {"generator", "sylva"}}}};
+  Json meshes = Json::array(), nodes = Json::array(), node_ids = Json::array();
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.positions.empty() || mesh.indices.size() < 3) continue;
+    meshes.push_back(mesh_json(mesh, bin));
+    nodes.push_back({{"name", mesh.name}, {"mesh", meshes.size() - 1}});
+    node_ids.push_back(nodes.size() - 1);
+  }
+  Json scene_json = {{"name", "sylva"}};
+  if (!node_ids.empty()) scene_json["nodes"] = node_ids;
+  if (!scene.hierarchy.empty() || !scene.hierarchy.leaf_branch.empty()) {
+    scene_json["extras"]["sylva_hierarchy"] = {{"branch_parent", scene.hierarchy.branch_parent},
+                                               {"branch_diameter", scene.hierarchy.branch_diameter},
+                                               {"leaf_branch", scene.hierarchy.leaf_branch}};
+  }
+  gltf["scene"] = 0;
+  gltf["scenes"] = Json::array({scene_json});
+  if (!nodes.empty()) {
+    gltf["nodes"] = nodes;
+    gltf["meshes"] = meshes;
+  }
+  if (!scene.materials.empty()) {
+    Json mats = Json::array();
+    for (const Material& m : scene.materials)
+      mats.push_back(material_json(m));
+    gltf["materials"] = mats;
+  }
+  if (!scene.textures.empty()) {
+    Json images = Json::array(), textures = Json::array();
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+      const std::string png = encode_png(scene.textures[t], path);
+      Json image = {{"bufferView", bin.view(png.data(), png.size(), 0)}, {"mimeType", "image/png"}};
+      if (!scene.textures[t].name.empty()) image["name"] = scene.textures[t].name;
+      images.push_back(image);
+      textures.push_back({{"sampler", 0}, {"source", t}});
+    }
+    gltf["images"] = images;
+    gltf["textures"] = textures;
+    gltf["samplers"] = Json::array(
+        {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+  }
+  while (bin.bin().size() % 4)
+    bin.bin().push_back('\0');
+  if (!bin.bin().empty()) {
+    gltf["buffers"] = Json::array({{{"byteLength", bin.bin().size()}}});
+    gltf["bufferViews"] = bin.views();
+    gltf["accessors"] = bin.accessors();
+  }
+
+  std::string body;
+  append_chunk(body, gltf.dump(), 0x4E4F534Au, ' ');
+  if (!bin.bin().empty()) append_chunk(body, bin.bin(), 0x004E4942u, '\0');
+  std::string glb = "glTF";
+  const uint32_t header[2] = {2u, uint32_t(12 + body.size())};
+  glb.append(reinterpret_cast<const char*>(header), 8);
+  glb += body;
+  write_file_atomic(path, glb);
+}
+
+}  // namespace sylva

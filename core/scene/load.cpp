@@ -97,9 +97,13 @@ void repair_normals(Mesh& mesh) {
     compute_vertex_normals(mesh);
     return;
   }
+  auto usable = [](const glm::vec3& n) {
+    const double len = glm::length(glm::dvec3(n));
+    return std::isfinite(len) && len > 1e-12;
+  };
   bool bad = false;
   for (const glm::vec3& n : mesh.normals)
-    bad = bad || !finite(n) || glm::dot(n, n) < 1e-24f;
+    bad = bad || !usable(n);
   std::vector<glm::vec3> fallback;
   if (bad) {
     Mesh copy;
@@ -110,10 +114,7 @@ void repair_normals(Mesh& mesh) {
   }
   for (size_t v = 0; v < mesh.normals.size(); ++v) {
     glm::vec3& n = mesh.normals[v];
-    if (!finite(n) || glm::dot(n, n) < 1e-24f)
-      n = fallback[v];
-    else
-      n = glm::normalize(n);
+    n = usable(n) ? glm::vec3(glm::normalize(glm::dvec3(n))) : fallback[v];
   }
 }
 

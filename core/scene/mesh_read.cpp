@@ -9,6 +9,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
@@ -60,7 +61,11 @@ Scene read_mesh_file(const std::string& path) {
                        "vertex " + std::to_string(vh.idx()) + " has a NaN or infinite position");
     mesh.positions.emplace_back(p[0], p[1], p[2]);
   }
-  if (opt.check(OpenMesh::IO::Options::VertexNormal)) {
+  // OpenMesh's STL reader reports vertex normals it never writes (STL has facet normals only).
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (opt.check(OpenMesh::IO::Options::VertexNormal) && ext != ".stl") {
     for (auto vh : pm.vertices()) {
       const auto& n = pm.normal(vh);
       mesh.normals.emplace_back(n[0], n[1], n[2]);  // repaired in finish_scene if bad

@@ -28,10 +28,10 @@ struct Texture {
 
 struct Material {
   std::string name;
-  glm::vec4 base_color{1.0f};     // linear RGBA factor (glTF baseColorFactor)
-  int base_color_texture = -1;    // index into Scene::textures, -1 = none
+  glm::vec4 base_color{1.0f};   // linear RGBA factor (glTF baseColorFactor)
+  int base_color_texture = -1;  // index into Scene::textures, -1 = none
   AlphaMode alpha_mode = AlphaMode::Opaque;
-  float alpha_cutoff = 0.5f;      // [0, 1]; used with AlphaMode::Mask
+  float alpha_cutoff = 0.5f;  // [0, 1]; used with AlphaMode::Mask
   bool double_sided = false;
 };
 
@@ -79,10 +79,10 @@ struct Hierarchy {
 
 // What loading and classification decided, for `sylva info`.
 struct SceneReport {
-  std::string source;           // file path or "sample:tree"
-  std::string foliage_rule;     // e.g. "name match", "alpha MASK", "--foliage all"
-  std::string foliage_reason;   // one line: which materials/meshes and why
-  std::string cluster_method;   // "hierarchy (division diameter 0.05)" or "k-means (k=12, seed 1)"
+  std::string source;          // file path or "sample:tree"
+  std::string foliage_rule;    // e.g. "name match", "alpha MASK", "--foliage all"
+  std::string foliage_reason;  // one line: which materials/meshes and why
+  std::string cluster_method;  // "hierarchy (division diameter 0.05)" or "k-means (k=12, seed 1)"
   size_t dropped_degenerate = 0;  // zero-area / repeated-index triangles removed on load
   std::vector<std::string> warnings;
 };

@@ -74,6 +74,14 @@ TEST(Cli, BadOptionValuesNameTheOption) {
   expect_input_error(base + "--ambient -0.01", "--ambient");
   expect_input_error(base + "--background purple", "--background");
   expect_input_error(base + "--style nonesuch", "--style");
+  expect_input_error(base + "--light sun:0,1,0", "--light");
+  expect_input_error(base + "--light dir:0,0,0", "--light");
+  expect_input_error(base + "--light dir:0,1,0:10.5", "--light");
+  expect_input_error(base + "--light dir:0,1,0:-0.1", "--light");
+  expect_input_error(base + "--light dir:0,1,0:1:sky", "--light");
+  std::string nine;
+  for (int i = 0; i < 9; ++i) nine += " --light dir:0,1,0";
+  expect_input_error(base + nine, "--light");
   expect_input_error(base + "--foliage nomatch*", "--foliage");
   expect_input_error(base + "--clusters 4097", "--clusters");
   expect_input_error(base + "--clusters -1", "--clusters");
@@ -93,7 +101,11 @@ TEST(Cli, ParameterExtremesRender) {
   for (const char* opts : {"--size 1 --ssaa 4", "--size 64x16 --elevation 89 --fov 150",
                            "--size 16x64 --elevation -89 --fov 1 --ambient 0",
                            "--size 32 --ortho --ambient 1 --background transparent",
-                           "--size 32 --distance 100 --azimuth -720"}) {
+                           "--size 32 --distance 100 --azimuth -720",
+                           "--size 32 --light dir:1,1,1:10:scene --light point:0,5,5:0",
+                           "--size 32 --light dir:0,1,0 --light dir:0,1,0 --light dir:0,1,0 "
+                           "--light dir:0,1,0 --light dir:0,1,0 --light dir:0,1,0 "
+                           "--light dir:0,1,0 --light dir:1,0,0"}) {
     std::string out = dir + "/e.png";
     RunResult r = run_sylva("render " + small_tree() + " " + opts + " -o " + out);
     EXPECT_EQ(r.status, 0) << opts << "\n" << r.output;
@@ -137,7 +149,7 @@ TEST(Cli, SameCommandTwiceGivesSameBytes) {
 TEST(Cli, BuffersReadBackExactly) {
   std::string dir = temp_dir("buffers") + "/out";
   RunResult r = run_sylva("buffers " + small_tree() + " --size 96x64 --out-dir " + dir +
-                          " --id cluster --graph " + dir + ".dot");
+                          " --id cluster --background transparent --graph " + dir + ".dot");
   ASSERT_EQ(r.status, 0) << r.output;
   cv::Mat color = cv::imread(dir + "/color.png", cv::IMREAD_UNCHANGED);
   cv::Mat normal = cv::imread(dir + "/normal.tiff", cv::IMREAD_UNCHANGED);

@@ -1,6 +1,7 @@
 // Orbit camera: eye placement convention, automatic framing, option validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
@@ -32,6 +33,22 @@ std::string where_of(const Bounds& b, const OrbitParams& p, int w, int h) {
     return e.where();
   }
   return "";
+}
+
+// Largest |NDC x| or |NDC y| over points on the bounds' bounding sphere.
+float sphere_extent(const Bounds& b, const Camera& c) {
+  const float r = 0.5f * b.diagonal();
+  float extent = 0.0f;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {  // Fibonacci sphere
+    const float z = 1.0f - 2.0f * (i + 0.5f) / n;
+    const float phi = 2.39996323f * i;
+    const float s = std::sqrt(1.0f - z * z);
+    const glm::vec3 p = b.center() + r * glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+    const glm::vec4 clip = c.proj * c.view * glm::vec4(p, 1.0f);
+    extent = std::max({extent, std::abs(clip.x / clip.w), std::abs(clip.y / clip.w)});
+  }
+  return extent;
 }
 
 TEST(Camera, AzimuthZeroLooksFromPlusZ) {
@@ -106,7 +123,12 @@ TEST(Camera, AutoFramingKeepsCornersInside) {
               }
               extent = std::max({extent, std::abs(ndc.x), std::abs(ndc.y)});
             }
-            EXPECT_GT(extent, 0.3f) << "framing far too loose";
+            EXPECT_GT(extent, 0.0f);
+            // The bounding sphere itself touches the frame (5% margin): tight, not loose.
+            const float sphere = sphere_extent(b, c);
+            EXPECT_LE(sphere, 1.0f);
+            EXPECT_GE(sphere, fov <= 90.0f || ortho ? 0.85f : 0.6f)
+                << "fov " << fov << " ortho " << ortho;
           }
         }
       }

@@ -1,1 +1,451 @@
-// placeholder until implemented
+// The G-buffer raster pass against analytic scenes: sphere normals, plane depth, ids, ka
+// decoding, alpha-mask cut-outs, double-sided leaves, SSAA, orientation and determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "core/error.h"
+#include "core/gl/rasterizer.h"
+
+namespace sylva {
+namespace {
+
+GlContext& gl() {
+  static std::unique_ptr<GlContext> context = create_gl_context();
+  return *context;
+}
+
+// Fills the per-triangle arrays with one primitive / cluster id and role.
+void set_ids(Mesh& m, uint32_t primitive, uint32_t cluster, Role role = Role::Foliage) {
+  const size_t n = m.triangle_count();
+  m.primitive_ids.assign(n, primitive);
+  m.cluster_ids.assign(n, cluster);
+  m.roles.assign(n, role);
+}
+
+// Appends a UV sphere as its own connected component, triangles wound CCW from outside.
+void add_sphere(Mesh& m, glm::vec3 centre, float radius, int seg_u, int seg_v,
+                float normal_length = 1.0f) {
+  const auto base = static_cast<uint32_t>(m.positions.size());
+  for (int j = 0; j <= seg_v; ++j) {
+    const float theta = std::numbers::pi_v<float> * j / seg_v;
+    for (int i = 0; i <= seg_u; ++i) {
+      const float phi = 2.0f * std::numbers::pi_v<float> * i / seg_u;
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        -std::sin(theta) * std::sin(phi));
+      m.positions.push_back(centre + radius * n);
+      m.normals.push_back(normal_length * n);
+      m.uvs.emplace_back(static_cast<float>(i) / seg_u, static_cast<float>(j) / seg_v);
+    }
+  }
+  auto at = [&](int i, int j) { return base + static_cast<uint32_t>(j * (seg_u + 1) + i); };
+  for (int j = 0; j < seg_v; ++j) {
+    for (int i = 0; i < seg_u; ++i) {
+      if (j != 0) m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
+      if (j != seg_v - 1) {
+        m.indices.insert(m.indices.end(), {at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
+      }
+    }
+  }
+}
+
+// A quad in the z = z0 plane facing +Z (CCW seen from +Z), uv (0, 0) at the top left.
+Mesh make_quad(float half, float z0, float normal_length = 1.0f) {
+  Mesh m;
+  m.name = "quad";
+  m.positions = {{-half, -half, z0}, {half, -half, z0}, {half, half, z0}, {-half, half, z0}};
+  m.normals.assign(4, glm::vec3(0, 0, normal_length));
+  m.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+Scene scene_of(std::vector<Mesh> meshes, Material material = {}) {
+  Scene s;
+  s.materials.push_back(material);
+  for (Mesh& m : meshes)
+    m.material = 0;
+  s.meshes = std::move(meshes);
+  return s;
+}
+
+Camera front_camera(const Scene& s, int size, bool ortho = false, float az = 0.0f,
+                    float distance = 0.0f) {
+  OrbitParams p;
+  p.azimuth_deg = az;
+  p.elevation_deg = 0.0f;
+  p.ortho = ortho;
+  p.distance = distance;
+  return make_orbit_camera(s.bounds(), p, size, size);
+}
+
+Lighting ambient_only(float ambient) {
+  Lighting l;
+  l.ambient = ambient;
+  return l;
+}
+
+RasterRequest request_of(TargetMask targets, IdKind kind = IdKind::Primitive, int ssaa = 1) {
+  RasterRequest r;
+  r.targets = targets;
+  r.id_kind = kind;
+  r.ssaa = ssaa;
+  r.background = glm::vec4(0, 0, 0, 0);
+  return r;
+}
+
+RasterRequest request_of(Target target, IdKind kind = IdKind::Primitive) {
+  return request_of(static_cast<TargetMask>(target), kind);
+}
+
+std::set<int32_t> id_set(const cv::Mat& ids) {
+  std::set<int32_t> s;
+  for (auto it = ids.begin<int32_t>(); it != ids.end<int32_t>(); ++it)
+    s.insert(*it);
+  return s;
+}
+
+float srgb_to_linear(uint8_t c) {
+  const float v = c / 255.0f;
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+Scene sphere_scene(int seg_u = 256, int seg_v = 128) {
+  Mesh m;
+  m.name = "sphere";
+  add_sphere(m, glm::vec3(0.5f, -0.25f, 1.0f), 1.0f, seg_u, seg_v);
+  set_ids(m, 5, 2);
+  return scene_of({m});
+}
+
+TEST(Raster, SphereNormalsMatchAnalytic) {
+  const Scene s = sphere_scene();
+  OrbitParams p;  // default az 30, el 15
+  const Camera cam = make_orbit_camera(s.bounds(), p, 256, 256);
+  Rasterizer r(gl());
+  r.upload(s);
+  const GBuffer g = r.render(cam, Lighting::three_point(),
+                             request_of(Target::Normal | Target::Position | Target::Depth));
+  const glm::vec3 centre = glm::vec3(cam.view * glm::vec4(0.5f, -0.25f, 1.0f, 1.0f));
+  double sum_deg = 0.0;
+  int covered = 0;
+  for (int y = 0; y < 256; ++y) {
+    for (int x = 0; x < 256; ++x) {
+      const cv::Vec3f n = g.normal.at<cv::Vec3f>(y, x);
+      if (n == cv::Vec3f(0, 0, 0)) continue;
+      ++covered;
+      const cv::Vec3f pos = g.position.at<cv::Vec3f>(y, x);
+      const glm::vec3 exact = glm::normalize(glm::vec3(pos[0], pos[1], pos[2]) - centre);
+      const float c = std::clamp(glm::dot(exact, glm::vec3(n[0], n[1], n[2])), -1.0f, 1.0f);
+      sum_deg += glm::degrees(std::acos(c));
+      EXPECT_NEAR(cv::norm(n), 1.0, 2e-3);
+      ASSERT_NEAR(g.depth.at<float>(y, x), -pos[2], 1e-4f * -pos[2]);
+    }
+  }
+  // Analytic coverage of a centred sphere: angular radius asin(r / d), NDC radius
+  // tan(asin(r / d)) / tan(fov / 2), area pi ndc^2 / 4 of the image.
+  const float d = glm::length(cam.eye - glm::vec3(0.5f, -0.25f, 1.0f));
+  const double ndc = std::tan(std::asin(1.0 / d)) / std::tan(glm::radians(p.fov_deg) / 2);
+  EXPECT_NEAR(covered, std::numbers::pi * ndc * ndc / 4 * 256 * 256, 0.01 * covered);
+  EXPECT_LT(sum_deg / covered, 1.0);
+}
+
+TEST(Raster, PlaneDepthIsLinearViewDistance) {
+  Scene s = scene_of({make_quad(1.0f, 0.25f)});
+  set_ids(s.meshes[0], 1, 1);
+  for (bool ortho : {false, true}) {
+    const Camera cam = front_camera(s, 128, ortho, 0.0f, 4.0f);
+    Rasterizer r(gl());
+    r.upload(s);
+    const GBuffer g = r.render(cam, Lighting::three_point(),
+                               request_of(Target::Depth | Target::Position | Target::Id));
+    int covered = 0;
+    for (int y = 0; y < 128; ++y) {
+      for (int x = 0; x < 128; ++x) {
+        if (g.id.at<int32_t>(y, x) == 0) {
+          ASSERT_EQ(g.depth.at<float>(y, x), 0.0f);
+          continue;
+        }
+        ++covered;
+        // Eye at z = 0.25 + 4 (bounds centre z = 0.25), plane at z = 0.25: depth 4.
+        ASSERT_NEAR(g.depth.at<float>(y, x), 4.0f, 4e-4f) << "ortho " << ortho;
+        ASSERT_NEAR(g.position.at<cv::Vec3f>(y, x)[2], -4.0f, 4e-4f);
+      }
+    }
+    EXPECT_GT(covered, 100);
+  }
+}
+
+TEST(Raster, OneQuadIsOneId) {
+  Mesh quad = make_quad(0.5f, 0.0f);
+  set_ids(quad, 7, 3);
+  Mesh far_sphere;  // a second object, so the object id of each mesh is checked
+  add_sphere(far_sphere, glm::vec3(3, 0, -1), 0.5f, 32, 16);
+  set_ids(far_sphere, 9, 4, Role::Wood);
+  const Scene s = scene_of({quad, far_sphere});
+  const Camera cam = front_camera(s, 200);
+  Rasterizer r(gl());
+  r.upload(s);
+  const struct {
+    IdKind kind;
+    std::set<int32_t> expected;
+  } cases[] = {
+      {IdKind::Primitive, {0, 7, 9}}, {IdKind::Cluster, {0, 3, 4}}, {IdKind::Object, {0, 1, 2}}};
+  for (const auto& c : cases) {
+    const GBuffer g = r.render(cam, Lighting::three_point(), request_of(Target::Id, c.kind));
+    EXPECT_EQ(id_set(g.id), c.expected);
+  }
+  // Only the quad: exactly one non-zero value, on a convex square region.
+  const Scene only = scene_of({quad});
+  r.upload(only);
+  const GBuffer g =
+      r.render(front_camera(only, 200), Lighting::three_point(), request_of(Target::Id));
+  EXPECT_EQ(id_set(g.id), (std::set<int32_t>{0, 7}));
+  const cv::Rect box = cv::boundingRect(g.id != 0);
+  EXPECT_EQ(cv::countNonZero(g.id), box.area());
+  EXPECT_NEAR(box.width, box.height, 1);
+}
+
+TEST(Raster, OnlyRequestedTargetsAreAllocated) {
+  const Scene s = sphere_scene(32, 16);
+  Rasterizer r(gl());
+  r.upload(s);
+  const Camera cam = front_camera(s, 64);
+  GBuffer g = r.render(cam, Lighting::three_point(), request_of(Target::Color));
+  EXPECT_EQ(r.last_allocated_targets(), static_cast<TargetMask>(Target::Color));
+  EXPECT_EQ(g.color.type(), CV_8UC4);
+  EXPECT_TRUE(g.normal.empty() && g.depth.empty() && g.id.empty() && g.ka.empty());
+  g = r.render(cam, Lighting::three_point(), request_of(Target::Normal | Target::Id));
+  EXPECT_EQ(r.last_allocated_targets(), Target::Normal | Target::Id);
+  EXPECT_TRUE(g.color.empty());
+  EXPECT_EQ(g.normal.type(), CV_32FC3);
+  EXPECT_EQ(g.id.type(), CV_32SC1);
+}
+
+TEST(Raster, KaFromNormalLengthDarkensAmbient) {
+  Material white;
+  white.base_color = glm::vec4(1.0f);
+  const float ambient = 0.8f;
+  float linear[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const float ka = k == 0 ? 1.0f : 0.5f;
+    const Scene s = scene_of({make_quad(1.0f, 0.0f, ka)}, white);
+    Rasterizer r(gl());
+    r.upload(s);
+    const GBuffer g = r.render(front_camera(s, 64), ambient_only(ambient),
+                               request_of(Target::Color | Target::Ka | Target::Normal));
+    const cv::Vec4b c = g.color.at<cv::Vec4b>(32, 32);
+    EXPECT_EQ(c[3], 255);
+    EXPECT_NEAR(g.ka.at<float>(32, 32), ka, 1e-6f);
+    EXPECT_NEAR(g.normal.at<cv::Vec3f>(32, 32)[2], 1.0f, 1e-3f);  // re-normalised
+    linear[k] = srgb_to_linear(c[1]);
+    EXPECT_NEAR(linear[k], ambient * ka, 0.01f);
+  }
+  EXPECT_NEAR(linear[1] / linear[0], 0.5f, 0.02f);
+}
+
+// A 256^2 texture whose alpha is a disc of radius 0.4 (uv units), opaque square otherwise.
+Scene masked_quad_scene(AlphaMode mode) {
+  Scene s = scene_of({make_quad(1.0f, 0.0f)});
+  Texture t;
+  t.name = "disc";
+  t.width = t.height = 256;
+  t.rgba.resize(256 * 256 * 4);
+  for (int y = 0; y < 256; ++y) {
+    for (int x = 0; x < 256; ++x) {
+      const float u = (x + 0.5f) / 256 - 0.5f, v = (y + 0.5f) / 256 - 0.5f;
+      uint8_t* px = &t.rgba[(y * 256 + x) * 4];
+      px[0] = 40, px[1] = 160, px[2] = 40;
+      px[3] = u * u + v * v < 0.16f ? 255 : 0;
+    }
+  }
+  s.textures.push_back(t);
+  s.materials[0].base_color_texture = 0;
+  s.materials[0].alpha_mode = mode;
+  s.materials[0].double_sided = true;
+  set_ids(s.meshes[0], 1, 1);
+  return s;
+}
+
+TEST(Raster, AlphaMaskCutsEveryTarget) {
+  const TargetMask all = kAllTargetsMask;
+  Rasterizer r(gl());
+  Scene s = masked_quad_scene(AlphaMode::Opaque);
+  const Camera cam = front_camera(s, 256, true);
+  r.upload(s);
+  const int square = cv::countNonZero(r.render(cam, ambient_only(1), request_of(all)).id);
+  for (AlphaMode mode : {AlphaMode::Mask, AlphaMode::Blend}) {
+    s = masked_quad_scene(mode);
+    r.upload(s);
+    const GBuffer g = r.render(cam, ambient_only(1), request_of(all));
+    const int disc = cv::countNonZero(g.id);
+    EXPECT_NEAR(disc, square * std::numbers::pi * 0.16, 0.02 * disc) << alpha_mode_name(mode);
+    EXPECT_EQ(cv::countNonZero(g.depth), disc);
+    EXPECT_EQ(cv::countNonZero(g.ka), disc);
+    cv::Mat channels[4];
+    cv::split(g.color, channels);
+    EXPECT_EQ(cv::countNonZero(channels[3]), disc);
+    // The corners of the square are background, the centre is leaf-green.
+    const cv::Rect box = cv::boundingRect(g.id != 0);
+    EXPECT_NEAR(box.width, std::sqrt(disc / std::numbers::pi) * 2, 3);
+    const cv::Vec4b centre = g.color.at<cv::Vec4b>(128, 128);
+    EXPECT_GT(centre[1], centre[0] + 50);
+  }
+}
+
+TEST(Raster, DoubleSidedBackFaceNormalFacesCamera) {
+  Material two_sided;
+  two_sided.double_sided = true;
+  Scene s = scene_of({make_quad(1.0f, 0.0f)}, two_sided);
+  set_ids(s.meshes[0], 1, 1);
+  const Camera back = front_camera(s, 64, false, 180.0f);  // on -Z, sees the back face
+  Rasterizer r(gl());
+  r.upload(s);
+  GBuffer g = r.render(back, ambient_only(1), request_of(Target::Normal | Target::Id));
+  ASSERT_GT(cv::countNonZero(g.id), 64 * 64 / 4);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (g.id.at<int32_t>(y, x) != 0) {
+        ASSERT_GT(g.normal.at<cv::Vec3f>(y, x)[2], 0.99f);
+      }
+    }
+  }
+  // Single-sided: the back face is culled.
+  s.materials[0].double_sided = false;
+  r.upload(s);
+  g = r.render(back, ambient_only(1), request_of(Target::Normal | Target::Id));
+  EXPECT_EQ(cv::countNonZero(g.id), 0);
+}
+
+TEST(Raster, ImageOrientationAndChannelOrder) {
+  // Texture: top half red, bottom half blue; a quad raised above the centre of the view.
+  Scene s = scene_of({make_quad(1.0f, 0.0f)});
+  Texture t{"halves", 64, 64, {}};
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const bool top = y < 32;
+      t.rgba.insert(t.rgba.end(), {uint8_t(top ? 255 : 0), 0, uint8_t(top ? 0 : 255), 255});
+    }
+  }
+  s.textures.push_back(t);
+  s.materials[0].base_color_texture = 0;
+  s.materials[0].double_sided = true;
+  Rasterizer r(gl());
+  r.upload(s);
+  const GBuffer g = r.render(front_camera(s, 64, true), ambient_only(1), request_of(Target::Color));
+  const cv::Vec4b top = g.color.at<cv::Vec4b>(16, 32), bottom = g.color.at<cv::Vec4b>(48, 32);
+  EXPECT_GT(top[2], 200);  // BGRA: red in channel 2
+  EXPECT_LT(top[0], 30);
+  EXPECT_GT(bottom[0], 200);
+  EXPECT_LT(bottom[2], 30);
+}
+
+TEST(Raster, BackgroundIsSrgbEncoded) {
+  const Scene s = sphere_scene(16, 8);
+  Rasterizer r(gl());
+  r.upload(s);
+  RasterRequest req = request_of(Target::Color);
+  req.background = glm::vec4(0.21586f, 1.0f, 0.0f, 0.0f);  // linear 0.21586 = sRGB 128
+  const GBuffer g = r.render(front_camera(s, 32), ambient_only(1), req);
+  EXPECT_EQ(g.color.at<cv::Vec4b>(0, 0), cv::Vec4b(0, 255, 128, 0));
+}
+
+// Several separate spheres, each its own primitive id.
+Scene spheres_scene() {
+  Mesh m;
+  for (int i = 0; i < 4; ++i)
+    add_sphere(m, glm::vec3(i * 0.9f, (i % 2) * 0.5f, 0), 0.6f, 64, 32);
+  const size_t per = m.triangle_count() / 4;
+  set_ids(m, 0, 1);
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    m.primitive_ids[t] = 1 + t / per;
+  return scene_of({m});
+}
+
+TEST(Raster, SsaaKeepsColourAndExactIds) {
+  const Scene s = spheres_scene();
+  Rasterizer r(gl());
+  r.upload(s);
+  OrbitParams p;
+  const Camera cam = make_orbit_camera(s.bounds(), p, 160, 120);
+  const TargetMask all = kAllTargetsMask;
+  const GBuffer one = r.render(cam, Lighting::three_point(), request_of(all, IdKind::Primitive, 1));
+  const GBuffer two = r.render(cam, Lighting::three_point(), request_of(all, IdKind::Primitive, 2));
+  EXPECT_EQ(two.color.size(), cv::Size(160, 120));
+  EXPECT_EQ(id_set(one.id), (std::set<int32_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(id_set(two.id), id_set(one.id));
+  EXPECT_LT(cv::norm(one.color, two.color, cv::NORM_L1) / (160.0 * 120 * 4), 2.0);
+  // Geometry pixels agree between the buffers: covered normal <=> non-zero id.
+  cv::Mat normal_len;
+  cv::Mat ch[3];
+  cv::split(two.normal, ch);
+  cv::magnitude(ch[0], ch[1], normal_len);
+  cv::magnitude(normal_len, ch[2], normal_len);
+  EXPECT_EQ(cv::countNonZero(normal_len), cv::countNonZero(two.id));
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(normal_len, &lo, &hi, nullptr, nullptr, two.id != 0);
+  EXPECT_NEAR(lo, 1.0, 1e-3);
+  EXPECT_NEAR(hi, 1.0, 1e-3);
+  // Mostly the same ids pixel by pixel (differences only along silhouettes).
+  EXPECT_LT(cv::countNonZero(one.id != two.id), 0.05 * 160 * 120);
+}
+
+TEST(Raster, FiniteAndDeterministic) {
+  const Scene s = spheres_scene();
+  Rasterizer r(gl());
+  r.upload(s);
+  const Camera cam = make_orbit_camera(s.bounds(), OrbitParams{}, 96, 80);
+  for (int ssaa : {1, 3}) {
+    const RasterRequest req = request_of(kAllTargetsMask, IdKind::Cluster, ssaa);
+    const GBuffer a = r.render(cam, Lighting::three_point(), req);
+    const GBuffer b = r.render(cam, Lighting::three_point(), req);
+    for (Target t : kAllTargets) {
+      const cv::Mat &ma = target_image(a, t), &mb = target_image(b, t);
+      ASSERT_EQ(ma.size(), cv::Size(96, 80)) << target_name(t);
+      if (ma.depth() == CV_32F) {
+        EXPECT_TRUE(cv::checkRange(ma)) << target_name(t);
+      }
+      ASSERT_EQ(ma.total() * ma.elemSize(), mb.total() * mb.elemSize());
+      EXPECT_EQ(std::memcmp(ma.data, mb.data, ma.total() * ma.elemSize()), 0) << target_name(t);
+    }
+  }
+}
+
+TEST(Raster, ResizesBetweenRenders) {
+  const Scene s = sphere_scene(32, 16);
+  Rasterizer r(gl());
+  r.upload(s);
+  for (auto [w, h] : {std::pair{64, 48}, std::pair{33, 101}, std::pair{64, 48}}) {
+    const Camera cam = make_orbit_camera(s.bounds(), OrbitParams{}, w, h);
+    const GBuffer g =
+        r.render(cam, Lighting::three_point(), request_of(Target::Color | Target::Id));
+    EXPECT_EQ(g.color.size(), cv::Size(w, h));
+    EXPECT_EQ(g.id.size(), cv::Size(w, h));
+    EXPECT_GT(cv::countNonZero(g.id), w * h / 20);  // the sphere fits the narrow side
+  }
+}
+
+TEST(Raster, InvalidRequestsThrow) {
+  const Scene s = sphere_scene(8, 4);
+  Rasterizer r(gl());
+  r.upload(s);
+  const Camera cam = front_camera(s, 16);
+  EXPECT_THROW(
+      r.render(cam, ambient_only(1), request_of(Target::Id | Target::Color, IdKind::Object, 5)),
+      InputError);
+  Lighting many = Lighting::three_point();
+  many.lights.resize(kMaxLights + 1);
+  EXPECT_THROW(r.render(cam, many, request_of(Target::Id | Target::Color)), InputError);
+  Scene bad = s;
+  bad.meshes[0].indices.back() = 1u << 30;
+  EXPECT_THROW(r.upload(bad), InputError);
+}
+
+}  // namespace
+}  // namespace sylva

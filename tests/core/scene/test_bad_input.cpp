@@ -1,1 +1,250 @@
-// placeholder until implemented
+// Hostile and broken scene files: each must end in an InputError naming the file, never a
+// crash, an abort or a hang. Small glTF files are built here from a JSON template.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/scene/gltf_write.h"
+#include "core/scene/load.h"
+#include "tests/test_support.h"
+
+namespace sylva {
+namespace {
+
+using Json = nlohmann::json;
+
+std::string base64(const std::string& in) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const uint32_t v =
+        uint32_t(uint8_t(in[i])) << 16 | uint32_t(uint8_t(in[i + 1])) << 8 | uint8_t(in[i + 2]);
+    for (int s = 18; s >= 0; s -= 6)
+      out += k[(v >> s) & 63];
+  }
+  if (i + 1 == in.size()) {
+    const uint32_t v = uint32_t(uint8_t(in[i])) << 16;
+    out += std::string{k[(v >> 18) & 63], k[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == in.size()) {
+    const uint32_t v = uint32_t(uint8_t(in[i])) << 16 | uint32_t(uint8_t(in[i + 1])) << 8;
+    out += std::string{k[(v >> 18) & 63], k[(v >> 12) & 63], k[(v >> 6) & 63], '='};
+  }
+  return out;
+}
+
+// One triangle: 3 float positions (36 bytes) then 3 uint16 indices (6 bytes, padded to 8).
+Json triangle(const float p[9], const uint16_t idx[3]) {
+  std::string bin(44, '\0');
+  std::memcpy(bin.data(), p, 36);
+  std::memcpy(bin.data() + 36, idx, 6);
+  Json j = Json::parse(R"({
+    "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]
+  })");
+  j["buffers"] = {
+      {{"byteLength", 44}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
+  return j;
+}
+
+Json good_triangle() {
+  static const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  static const uint16_t idx[3] = {0, 1, 2};
+  return triangle(p, idx);
+}
+
+std::string write_gltf(const Json& j, const std::string& name = "t.gltf") {
+  const std::string path = test::temp_dir("bad") + "/" + name;
+  test::write_file(path, j.dump());
+  return path;
+}
+
+// Loads and expects an InputError whose message names the file (and `needle` if given).
+void expect_input_error(const std::string& path, const std::string& needle = "") {
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "loaded without error: " << path;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    if (!needle.empty()) {
+      EXPECT_NE(what.find(needle), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(BadInput, TemplateIsGood) {
+  Scene s = load_scene(write_gltf(good_triangle()));
+  EXPECT_EQ(s.triangle_count(), 1u);
+}
+
+TEST(BadInput, TruncatedFern) {
+  const std::string bytes = test::read_file(test::fern_path());
+  ASSERT_GT(bytes.size(), 100000u);
+  const std::string dir = test::temp_dir("trunc");
+  for (size_t len : {size_t(1), size_t(5), size_t(12), size_t(19), size_t(20), size_t(100),
+                     size_t(4000), bytes.size() / 2, bytes.size() - 1}) {
+    const std::string path = dir + "/fern_" + std::to_string(len) + ".glb";
+    test::write_file(path, bytes.substr(0, len));
+    expect_input_error(path, len >= 12 ? "truncated" : "");
+  }
+}
+
+TEST(BadInput, EmptyMissingDirectoryWrongExtension) {
+  const std::string dir = test::temp_dir("misc");
+  for (const char* name : {"empty.glb", "empty.gltf", "empty.obj", "empty.stl"}) {
+    test::write_file(dir + "/" + name, "");
+    expect_input_error(dir + "/" + name, "empty");
+  }
+  expect_input_error(dir + "/nope.glb", "no such file");
+  expect_input_error(dir, "directory");
+  test::write_file(dir + "/scene.txt", "hello");
+  expect_input_error(dir + "/scene.txt", ".glb");
+  test::write_file(dir + "/json.glb", good_triangle().dump());
+  expect_input_error(dir + "/json.glb", "magic");
+  test::write_file(dir + "/junk.ply", "this is not a mesh");
+  expect_input_error(dir + "/junk.ply");
+}
+
+TEST(BadInput, CorruptJson) {
+  std::string text = good_triangle().dump();
+  const std::string dir = test::temp_dir("json");
+  test::write_file(dir + "/cut.gltf", text.substr(0, text.size() / 2));
+  expect_input_error(dir + "/cut.gltf", "JSON");
+  test::write_file(dir + "/array.gltf", "[1, 2, 3]");
+  expect_input_error(dir + "/array.gltf");
+  Json wrong_type = good_triangle();
+  wrong_type["accessors"][0]["count"] = "three";
+  expect_input_error(write_gltf(wrong_type));
+}
+
+TEST(BadInput, IndexOutOfRange) {
+  static const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  static const uint16_t idx[3] = {0, 1, 7};
+  expect_input_error(write_gltf(triangle(p, idx)), "out of range");
+}
+
+TEST(BadInput, NanAndInfPositions) {
+  const float nan_p[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
+  const float inf_p[9] = {0, 0, 0, 1, 0, 0, 0, INFINITY, 0};
+  static const uint16_t idx[3] = {0, 1, 2};
+  expect_input_error(write_gltf(triangle(nan_p, idx)), "NaN");
+  expect_input_error(write_gltf(triangle(inf_p, idx)), "NaN");
+}
+
+TEST(BadInput, AccessorAndBufferViewRanges) {
+  Json count = good_triangle();
+  count["accessors"][0]["count"] = 1000000;
+  expect_input_error(write_gltf(count), "accessor 0");
+  Json offset = good_triangle();
+  offset["accessors"][1]["byteOffset"] = 4;
+  expect_input_error(write_gltf(offset), "accessor 1");
+  Json view = good_triangle();
+  view["bufferViews"][0]["byteLength"] = 4000000000u;
+  expect_input_error(write_gltf(view));
+  Json missing = good_triangle();
+  missing["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
+  expect_input_error(write_gltf(missing));
+  Json stride = good_triangle();
+  stride["bufferViews"][0]["byteStride"] = 8;  // smaller than a VEC3 of floats
+  expect_input_error(write_gltf(stride));
+  Json sparse = good_triangle();
+  sparse["accessors"][0]["sparse"] = {{"count", 1},
+                                      {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
+                                      {"values", {{"bufferView", 0}}}};
+  expect_input_error(write_gltf(sparse), "sparse");
+}
+
+TEST(BadInput, NodeGraph) {
+  Json cycle = good_triangle();
+  cycle["nodes"] = Json::parse(R"([{"mesh": 0, "children": [1]}, {"children": [0]}])");
+  expect_input_error(write_gltf(cycle));
+  Json self = good_triangle();
+  self["nodes"][0]["children"] = {0};
+  expect_input_error(write_gltf(self));
+  Json scene = good_triangle();
+  scene["scene"] = 3;
+  expect_input_error(write_gltf(scene));
+}
+
+TEST(BadInput, MissingExternalTexture) {
+  Json j = good_triangle();
+  j["materials"] =
+      Json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+  j["textures"] = Json::parse(R"([{"source": 0}])");
+  j["images"] = Json::parse(R"([{"uri": "leaf_missing.png"}])");
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  expect_input_error(write_gltf(j), "leaf_missing.png");
+  j["images"][0]["uri"] = "data:image/png;base64,AAAA";  // not a PNG
+  expect_input_error(write_gltf(j), "image 0");
+}
+
+TEST(BadInput, RequiredExtension) {
+  Json j = good_triangle();
+  j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  expect_input_error(write_gltf(j), "KHR_draco_mesh_compression");
+}
+
+TEST(BadInput, Hierarchy) {
+  Json j = good_triangle();
+  j["scenes"][0]["extras"]["sylva_hierarchy"] = {
+      {"branch_parent", {-1, 0}}, {"branch_diameter", {1.0, 0.5}}, {"leaf_branch", {0, 5}}};
+  expect_input_error(write_gltf(j), "leaf_branch");
+  j["scenes"][0]["extras"]["sylva_hierarchy"]["leaf_branch"] = {0, 1};
+  j["scenes"][0]["extras"]["sylva_hierarchy"]["branch_diameter"] = {1.0};
+  expect_input_error(write_gltf(j), "branch_diameter");
+  j["scenes"][0]["extras"]["sylva_hierarchy"] = "tree";
+  expect_input_error(write_gltf(j), "sylva_hierarchy");
+}
+
+TEST(BadInput, DegenerateOnlyScene) {
+  static const float p[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};  // collinear
+  static const uint16_t idx[3] = {0, 1, 2};
+  expect_input_error(write_gltf(triangle(p, idx)), "degenerate");
+}
+
+// Every single-byte corruption of a small GLB either loads or is an InputError.
+TEST(BadInput, ByteFlipsOfSmallGlb) {
+  Scene s;
+  Mesh m;
+  m.name = "leaf";
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  m.material = 0;
+  s.meshes = {m};
+  s.materials.push_back(Material{"leaf", glm::vec4(1), 0, AlphaMode::Mask, 0.5f, true});
+  s.textures.push_back(Texture{"t", 2, 2, std::vector<uint8_t>(16, 200)});
+  finish_scene(s, {});
+  const std::string dir = test::temp_dir("flip");
+  write_glb(s, dir + "/ok.glb");
+  const std::string bytes = test::read_file(dir + "/ok.glb");
+  size_t errors = 0;
+  for (size_t at = 0; at < bytes.size(); at += 5) {
+    for (uint8_t x : {uint8_t(0xff), uint8_t(0x01)}) {
+      std::string bad = bytes;
+      bad[at] = char(uint8_t(bad[at]) ^ x);
+      const std::string path = dir + "/flip.glb";
+      test::write_file(path, bad);
+      try {
+        load_scene(path);
+      } catch (const InputError&) {
+        ++errors;
+      }
+    }
+  }
+  EXPECT_GT(errors, 0u);
+}
+
+}  // namespace
+}  // namespace sylva

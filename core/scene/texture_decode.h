@@ -1,0 +1,56 @@
+// Decoding an encoded image (PNG, JPEG, any bit depth, 1-4 channels) from memory into the
+// scene's 8-bit RGBA Texture: 16-bit is scaled down, grey/RGB get an opaque alpha. Bad data
+// throws InputError(path, "<what>: cannot decode ..."). Used by gltf_read.cpp; header-only
+// so it needs no build entry of its own.
+#pragma once
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "core/scene/scene.h"
+
+namespace sylva {
+
+// `path` is the scene file and `what` names the image in error messages.
+inline Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& name,
+                              const std::string& path, const std::string& what) {
+  cv::Mat m;
+  if (bytes && size > 0 && size < size_t(1) << 31) {
+    try {
+      const cv::Mat encoded(1, int(size), CV_8U, const_cast<unsigned char*>(bytes));
+      m = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      m = cv::Mat();
+    }
+  }
+  if (m.empty()) throw InputError(path, what + ": cannot decode the image (PNG or JPEG expected)");
+  if (m.depth() == CV_16U)
+    m.convertTo(m, CV_8U, 1.0 / 257.0);
+  else if (m.depth() != CV_8U)
+    m.convertTo(m, CV_8U, 255.0);
+  cv::Mat rgba;
+  if (m.channels() == 1) {
+    cv::cvtColor(m, rgba, cv::COLOR_GRAY2RGBA);
+  } else if (m.channels() == 3) {
+    cv::cvtColor(m, rgba, cv::COLOR_BGR2RGBA);
+  } else if (m.channels() == 4) {
+    cv::cvtColor(m, rgba, cv::COLOR_BGRA2RGBA);
+  } else {  // grey + alpha: OpenCV has no conversion code for two channels
+    rgba.create(m.rows, m.cols, CV_8UC4);
+    for (int y = 0; y < m.rows; ++y)
+      for (int x = 0; x < m.cols; ++x) {
+        const cv::Vec2b g = m.at<cv::Vec2b>(y, x);
+        rgba.at<cv::Vec4b>(y, x) = cv::Vec4b(g[0], g[0], g[0], g[1]);
+      }
+  }
+  Texture t;
+  t.name = name;
+  t.width = rgba.cols;
+  t.height = rgba.rows;
+  t.rgba.assign(rgba.data, rgba.data + rgba.total() * 4);
+  return t;
+}
+
+}  // namespace sylva
