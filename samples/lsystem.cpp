@@ -213,12 +213,17 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
   uint32_t id = first_id;
   for (const Branch& b : s.branches) {
     if (b.count <= 0) continue;
-    const int sides = diameters[b.first] >= thick_diameter ? 8 : 6;
+    // Twigs far outnumber limbs and are a few pixels wide: fewer sides keep a 100k-leaf tree
+    // near 250k triangles.
+    const float d0 = diameters[b.first];
+    const int sides = d0 >= thick_diameter ? 8 : d0 >= 0.3f * thick_diameter ? 5 : 3;
     const float base_d = diameters[b.first];
     const uint32_t first_vertex = static_cast<uint32_t>(bark.positions.size());
     const int rings = b.count + 1;
     glm::vec3 ref(0.0f);
+    glm::vec3 last_dir(0.0f);
     float v = 0.0f;
+    int emitted = 0;
     for (int k = 0; k < rings; ++k) {
       const Internode& cur = s.internodes[b.first + std::min(k, b.count - 1)];
       glm::vec3 dir = cur.heading();
@@ -227,6 +232,11 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
         glm::vec3 both = s.internodes[b.first + k - 1].heading() + dir;
         if (glm::length(both) > 1e-4f) dir = glm::normalize(both);
       }
+      if (k > 0) v += s.internodes[b.first + k - 1].length() / (kPi * base_d);
+      // Thin axes skip rings where they barely bend (cos 12° ≈ 0.978): the tube between the
+      // kept rings is straight to within a fraction of its width.
+      if (sides < 8 && k > 0 && k < rings - 1 && glm::dot(dir, last_dir) > 0.978f) continue;
+      last_dir = dir;
       const float ring_d =
           k < b.count ? diameters[b.first + k] : 0.6f * diameters[b.first + b.count - 1];
       const float radius = 0.5f * ring_d;
@@ -234,7 +244,6 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
       ref -= dir * glm::dot(ref, dir);
       ref = glm::length(ref) > 1e-5f ? glm::normalize(ref) : any_perpendicular(dir);
       const glm::vec3 bin = glm::cross(dir, ref);
-      if (k > 0) v += s.internodes[b.first + k - 1].length() / (kPi * base_d);
       for (int j = 0; j <= sides; ++j) {
         float th = 2.0f * kPi * static_cast<float>(j % sides) / sides;
         glm::vec3 off = ref * std::cos(th) + bin * std::sin(th);
@@ -242,6 +251,7 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
         bark.normals.push_back(off);
         bark.uvs.push_back({static_cast<float>(j) / sides, v});
       }
+      ++emitted;
       if (k == rings - 1) {  // tip cone apex
         bark.positions.push_back(center + dir * radius);
         bark.normals.push_back(dir);
@@ -249,13 +259,13 @@ void emit_bark(const Skeleton& s, const std::vector<float>& diameters, float thi
       }
     }
     const uint32_t stride = sides + 1;
-    for (int k = 0; k + 1 < rings; ++k) {
+    for (int k = 0; k + 1 < emitted; ++k) {
       for (int j = 0; j < sides; ++j) {
         uint32_t a = first_vertex + k * stride + j, c = a + stride + 1, d = a + stride;
         bark.indices.insert(bark.indices.end(), {a, a + 1, c, a, c, d});
       }
     }
-    const uint32_t last_ring = first_vertex + (rings - 1) * stride;
+    const uint32_t last_ring = first_vertex + (emitted - 1) * stride;
     const uint32_t apex = last_ring + stride;
     for (int j = 0; j < sides; ++j)
       bark.indices.insert(bark.indices.end(), {last_ring + j, last_ring + j + 1, apex});

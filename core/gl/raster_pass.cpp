@@ -4,12 +4,18 @@ namespace sylva {
 
 int GBufferHandles::of(Target t) const {
   switch (t) {
-    case Target::Color: return color;
-    case Target::Normal: return normal;
-    case Target::Depth: return depth;
-    case Target::Position: return position;
-    case Target::Id: return id;
-    case Target::Ka: return ka;
+    case Target::Color:
+      return color;
+    case Target::Normal:
+      return normal;
+    case Target::Depth:
+      return depth;
+    case Target::Position:
+      return position;
+    case Target::Id:
+      return id;
+    case Target::Ka:
+      return ka;
   }
   return -1;
 }
@@ -17,12 +23,18 @@ int GBufferHandles::of(Target t) const {
 namespace {
 cv::Mat& slot(GBuffer& b, Target t) {
   switch (t) {
-    case Target::Color: return b.color;
-    case Target::Normal: return b.normal;
-    case Target::Depth: return b.depth;
-    case Target::Position: return b.position;
-    case Target::Id: return b.id;
-    case Target::Ka: return b.ka;
+    case Target::Color:
+      return b.color;
+    case Target::Normal:
+      return b.normal;
+    case Target::Depth:
+      return b.depth;
+    case Target::Position:
+      return b.position;
+    case Target::Id:
+      return b.id;
+    case Target::Ka:
+      return b.ka;
   }
   return b.color;
 }

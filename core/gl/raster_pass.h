@@ -23,5 +23,4 @@ struct RasterSetup {
 
 GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup);
 
-
 }  // namespace sylva

@@ -16,34 +16,31 @@ namespace sylva {
 namespace {
 
 constexpr int kSlots = 6;  // colour attachments, one per Target in kAllTargets order
+// Framebuffer memory allowed for one render (attachments only; read-back needs about as much
+// again): 4 GiB fits 4096^2 at SSAA 2 with every target.
+constexpr double kMaxFramebufferBytes = 4.0 * (1u << 30);
 
 // Attachment formats: colour is sRGB-encoded by the shader into plain RGBA8 (SSAA decodes
 // it to average in linear light); normals, depth, position and ka are 32-bit float (llvmpipe
 // truncates to half floats, which left normals ~0.1% short); ids are 32-bit unsigned.
 struct SlotFormat {
   GLenum internal_format;
+  int bytes;  // per sample
   GLenum read_format;
   GLenum read_type;
   int cv_type;
 };
 
-SlotFormat slot_format(Target t) {
-  switch (t) {
-    case Target::Color:
-      return {GL_RGBA8, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4};
-    case Target::Normal:
-      return {GL_RGBA32F, GL_RGB, GL_FLOAT, CV_32FC3};
-    case Target::Depth:
-      return {GL_R32F, GL_RED, GL_FLOAT, CV_32FC1};
-    case Target::Position:
-      return {GL_RGBA32F, GL_RGB, GL_FLOAT, CV_32FC3};
-    case Target::Id:
-      return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1};
-    case Target::Ka:
-      return {GL_R32F, GL_RED, GL_FLOAT, CV_32FC1};
-  }
-  SYLVA_CHECK(false, "unknown target");
-}
+// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka.
+constexpr SlotFormat kSlotFormats[kSlots] = {
+    {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
+    {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
+    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
+    {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
+    {GL_R32UI, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1},
+    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
+};
+static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka);
 
 float srgb_encode(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
@@ -193,7 +190,7 @@ struct Rasterizer::Impl {
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
   std::vector<Material> materials;
-  std::map<TargetMask, RasterProgram> programs;
+  std::map<uint32_t, RasterProgram> programs;  // by target mask | alpha test << 16
   GLuint fbo = 0;
   GLuint depth_texture = 0;
   std::array<GLuint, kSlots> slot_textures{};
@@ -225,9 +222,12 @@ struct Rasterizer::Impl {
     fbo_targets = 0;
   }
 
-  const RasterProgram& program(TargetMask targets) {
-    auto it = programs.find(targets);
-    if (it == programs.end()) it = programs.emplace(targets, make_raster_program(targets)).first;
+  const RasterProgram& program(TargetMask targets, bool alpha_test) {
+    const uint32_t key = targets | (alpha_test ? 1u << 16 : 0u);
+    auto it = programs.find(key);
+    if (it == programs.end()) {
+      it = programs.emplace(key, make_raster_program(targets, alpha_test)).first;
+    }
     return it->second;
   }
 
@@ -243,8 +243,7 @@ struct Rasterizer::Impl {
     for (int i = 0; i < kSlots; ++i) {
       draw_buffers[i] = GL_NONE;
       if (!has(targets, kAllTargets[i])) continue;
-      slot_textures[i] =
-          make_target_texture(slot_format(kAllTargets[i]).internal_format, width, height);
+      slot_textures[i] = make_target_texture(kSlotFormats[i].internal_format, width, height);
       glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
                              slot_textures[i], 0);
       draw_buffers[i] = GL_COLOR_ATTACHMENT0 + i;
@@ -314,18 +313,26 @@ struct Rasterizer::Impl {
     glUniform2fv(p.light_spec, kMaxLights, &specs[0][0]);
   }
 
-  void draw_meshes(const RasterProgram& p) {
+  void draw_meshes(TargetMask targets, const Camera& camera, const Lighting& lighting,
+                   IdKind id_kind) {
     const Material fallback = default_material();
+    std::array<const RasterProgram*, 2> variants{};  // by alpha test
     for (const GpuMesh& m : meshes) {
       const Material& mat = m.material >= 0 ? materials[m.material] : fallback;
       const bool has_texture = mat.base_color_texture >= 0;
       // BLEND is drawn as MASK with cutoff 0.5: G-buffers hold one surface per pixel.
       const bool alpha_test = mat.alpha_mode != AlphaMode::Opaque;
       const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
+      const RasterProgram*& variant = variants[alpha_test ? 1 : 0];
+      if (!variant) {
+        variant = &program(targets, alpha_test);
+        set_frame_uniforms(*variant, camera, lighting, id_kind);
+      }
+      const RasterProgram& p = *variant;
+      glUseProgram(p.id);
       glUniform1ui(p.object_id, m.object_id);
       glUniform4fv(p.base_color, 1, &mat.base_color[0]);
       glUniform1i(p.has_texture, has_texture ? 1 : 0);
-      glUniform1i(p.alpha_test, alpha_test ? 1 : 0);
       glUniform1f(p.alpha_cutoff, cutoff);
       glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
       glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
@@ -346,7 +353,7 @@ struct Rasterizer::Impl {
   }
 
   cv::Mat read_slot(int slot) const {
-    const SlotFormat f = slot_format(kAllTargets[slot]);
+    const SlotFormat& f = kSlotFormats[slot];
     cv::Mat m(fbo_height, fbo_width, f.cv_type);
     glReadBuffer(GL_COLOR_ATTACHMENT0 + slot);
     glReadPixels(0, 0, fbo_width, fbo_height, f.read_format, f.read_type, m.data);
@@ -439,8 +446,17 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
     throw InputError("--ssaa", "size x ssaa exceeds the GL limit of " + std::to_string(max_size) +
                                    " pixels per side");
   }
+  double bytes = 4.0;  // the depth attachment
+  for (int i = 0; i < kSlots; ++i) {
+    if (has(request.targets, kAllTargets[i])) bytes += kSlotFormats[i].bytes;
+  }
+  bytes *= static_cast<double>(width) * height;
+  if (bytes > kMaxFramebufferBytes) {
+    throw InputError("--ssaa", "size x ssaa with these targets needs " +
+                                   std::to_string(static_cast<long>(bytes / (1 << 20))) +
+                                   " MiB of framebuffer (limit 4096 MiB); lower --size or --ssaa");
+  }
   s.ensure_fbo(width, height, request.targets);
-  const RasterProgram& p = s.program(request.targets);
 
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s.fbo);
   glViewport(0, 0, width, height);
@@ -453,8 +469,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
-  s.set_frame_uniforms(p, camera, lighting, request.id_kind);
-  s.draw_meshes(p);
+  s.draw_meshes(request.targets, camera, lighting, request.id_kind);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   return s.read_back(request.targets, request.ssaa);
 }

@@ -21,8 +21,8 @@ namespace sylva {
 struct RasterRequest {
   TargetMask targets = static_cast<TargetMask>(Target::Color);
   IdKind id_kind = IdKind::Primitive;
-  int ssaa = 1;                        // supersampling factor per axis, [1, 4]
-  glm::vec4 background{1, 1, 1, 0};    // colour target clear, linear RGBA
+  int ssaa = 1;                      // supersampling factor per axis, [1, 4]
+  glm::vec4 background{1, 1, 1, 0};  // colour target clear, linear RGBA
 };
 
 class Rasterizer {

@@ -57,8 +57,7 @@ flat in uint v_role;
 uniform vec4 u_base_color;      // linear RGBA factor
 uniform bool u_has_texture;
 uniform sampler2D u_texture;    // GL_SRGB8_ALPHA8: sampled values are linear
-uniform bool u_alpha_test;      // MASK (and BLEND, treated as MASK)
-uniform float u_alpha_cutoff;
+uniform float u_alpha_cutoff;   // ALPHA_TEST variant: MASK (and BLEND, drawn as MASK)
 uniform bool u_double_sided;
 uniform bool u_has_normals;     // false: flat normals from screen-space derivatives
 uniform bool u_ortho;
@@ -109,10 +108,12 @@ void main() {
   vec4 base = u_base_color * v_color;
 #if defined(OUT_COLOR)
   if (u_has_texture) base *= texture(u_texture, v_uv);
-#else
-  if (u_has_texture && u_alpha_test) base.a *= texture(u_texture, v_uv).a;
+#elif defined(ALPHA_TEST)
+  if (u_has_texture) base.a *= texture(u_texture, v_uv).a;
 #endif
-  if (u_alpha_test && base.a < u_alpha_cutoff) discard;
+#ifdef ALPHA_TEST
+  if (base.a < u_alpha_cutoff) discard;
+#endif
   vec3 n = surface_normal();
 
 #ifdef OUT_COLOR
@@ -122,13 +123,21 @@ void main() {
   vec3 diffuse = vec3(u_ambient * v_ka);
   vec3 specular = vec3(0.0);
   for (int i = 0; i < u_light_count; ++i) {
-    vec3 l = u_light_vector[i].w == 0.0 ? u_light_vector[i].xyz
-                                        : normalize(u_light_vector[i].xyz - v_view_pos);
+    vec3 l = u_light_vector[i].xyz;
+    if (u_light_vector[i].w != 0.0) {  // point light: no attenuation, just its direction
+      vec3 to_light = l - v_view_pos;
+      float len = length(to_light);
+      l = len > 1e-12 ? to_light / len : n;
+    }
     float n_dot_l = dot(n, l);
     if (n_dot_l <= 0.0) continue;
     diffuse += n_dot_l * u_light_color[i];
-    vec3 h = normalize(l + v);
-    specular += u_light_spec[i].x * pow(max(dot(n, h), 0.0), u_light_spec[i].y) * u_light_color[i];
+    vec3 h = l + v;  // zero only when the light is exactly behind the surface, seen head-on
+    float h_len = length(h);
+    if (h_len > 1e-6) {
+      float n_dot_h = max(dot(n, h / h_len), 0.0);
+      specular += u_light_spec[i].x * pow(n_dot_h, u_light_spec[i].y) * u_light_color[i];
+    }
   }
   o_color = vec4(srgb_encode(base.rgb * diffuse + specular), 1.0);
 #endif
@@ -172,8 +181,9 @@ std::string raster_vertex_source() {
   return std::string("#version 450 core\n") + kVertexBody;
 }
 
-std::string raster_fragment_source(TargetMask targets) {
+std::string raster_fragment_source(TargetMask targets, bool alpha_test) {
   std::string s = "#version 450 core\n";
+  if (alpha_test) s += "#define ALPHA_TEST 1\n";
   for (Target t : kAllTargets) {
     if (!has(targets, t)) continue;
     std::string name = target_name(t);
@@ -216,12 +226,14 @@ GLuint link_program(GLuint vertex, GLuint fragment, const std::string& name) {
   return program;
 }
 
-GLuint build_raster_program(TargetMask targets) {
-  const std::string name = "raster pass (targets " + std::to_string(targets) + ")";
+GLuint build_raster_program(TargetMask targets, bool alpha_test) {
+  const std::string name =
+      "raster pass (targets " + std::to_string(targets) + (alpha_test ? ", alpha test)" : ")");
   GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(), name + " vertex");
   GLuint fs = 0;
   try {
-    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets), name + " fragment");
+    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test),
+                        name + " fragment");
   } catch (...) {
     glDeleteShader(vs);
     throw;
@@ -229,9 +241,9 @@ GLuint build_raster_program(TargetMask targets) {
   return link_program(vs, fs, name);
 }
 
-RasterProgram make_raster_program(TargetMask targets) {
+RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   RasterProgram p;
-  p.id = build_raster_program(targets);
+  p.id = build_raster_program(targets, alpha_test);
   auto loc = [&](const char* name) { return glGetUniformLocation(p.id, name); };
   p.view = loc("u_view");
   p.proj = loc("u_proj");
@@ -240,7 +252,6 @@ RasterProgram make_raster_program(TargetMask targets) {
   p.base_color = loc("u_base_color");
   p.has_texture = loc("u_has_texture");
   p.texture = loc("u_texture");
-  p.alpha_test = loc("u_alpha_test");
   p.alpha_cutoff = loc("u_alpha_cutoff");
   p.double_sided = loc("u_double_sided");
   p.has_normals = loc("u_has_normals");

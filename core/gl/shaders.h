@@ -1,8 +1,9 @@
 // GLSL 4.50 sources of the G-buffer raster pass and the helpers that compile and link them.
 // Conventions shared with rasterizer.cpp: vertex attribute locations (kAttrib*), fragment
 // output location i = colour-attachment slot i = the i-th entry of kAllTargets, and one
-// program variant per target mask (#define OUT_COLOR ... prepended), so a pass that does not
-// write colour skips the lighting entirely.
+// program variant per target mask and alpha test (#define OUT_COLOR ... / ALPHA_TEST
+// prepended): a pass that does not write colour skips the lighting, and opaque meshes get a
+// shader without `discard`, which lets llvmpipe test depth before shading.
 #pragma once
 
 #define GL_GLEXT_PROTOTYPES
@@ -24,21 +25,21 @@ inline constexpr GLuint kAttribRole = 5;      // uint (Role)
 
 // The full fragment/vertex source for a target mask (with "#version 450 core" and defines).
 std::string raster_vertex_source();
-std::string raster_fragment_source(TargetMask targets);
+std::string raster_fragment_source(TargetMask targets, bool alpha_test);
 
 // Compiles one stage; throws std::runtime_error with the info log on failure.
 GLuint compile_shader(GLenum stage, const std::string& source, const std::string& name);
 // Links (and deletes) the stages; throws std::runtime_error with the info log on failure.
 GLuint link_program(GLuint vertex, GLuint fragment, const std::string& name);
 // compile_shader + link_program for the raster pass of this target mask.
-GLuint build_raster_program(TargetMask targets);
+GLuint build_raster_program(TargetMask targets, bool alpha_test);
 
 // A raster program variant and its uniform locations (-1 when optimised away).
 struct RasterProgram {
   GLuint id = 0;
-  GLint view, proj, id_kind, object_id, base_color, has_texture, texture, alpha_test, alpha_cutoff,
+  GLint view, proj, id_kind, object_id, base_color, has_texture, texture, alpha_cutoff,
       double_sided, has_normals, ortho, ambient, light_count, light_vector, light_color, light_spec;
 };
-RasterProgram make_raster_program(TargetMask targets);
+RasterProgram make_raster_program(TargetMask targets, bool alpha_test);
 
 }  // namespace sylva

@@ -12,117 +12,12 @@
 
 #include "core/error.h"
 #include "core/gl/rasterizer.h"
+#include "tests/core/gl/raster_scenes.h"
 
 namespace sylva {
 namespace {
 
-GlContext& gl() {
-  static std::unique_ptr<GlContext> context = create_gl_context();
-  return *context;
-}
-
-// Fills the per-triangle arrays with one primitive / cluster id and role.
-void set_ids(Mesh& m, uint32_t primitive, uint32_t cluster, Role role = Role::Foliage) {
-  const size_t n = m.triangle_count();
-  m.primitive_ids.assign(n, primitive);
-  m.cluster_ids.assign(n, cluster);
-  m.roles.assign(n, role);
-}
-
-// Appends a UV sphere as its own connected component, triangles wound CCW from outside.
-void add_sphere(Mesh& m, glm::vec3 centre, float radius, int seg_u, int seg_v,
-                float normal_length = 1.0f) {
-  const auto base = static_cast<uint32_t>(m.positions.size());
-  for (int j = 0; j <= seg_v; ++j) {
-    const float theta = std::numbers::pi_v<float> * j / seg_v;
-    for (int i = 0; i <= seg_u; ++i) {
-      const float phi = 2.0f * std::numbers::pi_v<float> * i / seg_u;
-      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                        -std::sin(theta) * std::sin(phi));
-      m.positions.push_back(centre + radius * n);
-      m.normals.push_back(normal_length * n);
-      m.uvs.emplace_back(static_cast<float>(i) / seg_u, static_cast<float>(j) / seg_v);
-    }
-  }
-  auto at = [&](int i, int j) { return base + static_cast<uint32_t>(j * (seg_u + 1) + i); };
-  for (int j = 0; j < seg_v; ++j) {
-    for (int i = 0; i < seg_u; ++i) {
-      if (j != 0) m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)});
-      if (j != seg_v - 1) {
-        m.indices.insert(m.indices.end(), {at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
-      }
-    }
-  }
-}
-
-// A quad in the z = z0 plane facing +Z (CCW seen from +Z), uv (0, 0) at the top left.
-Mesh make_quad(float half, float z0, float normal_length = 1.0f) {
-  Mesh m;
-  m.name = "quad";
-  m.positions = {{-half, -half, z0}, {half, -half, z0}, {half, half, z0}, {-half, half, z0}};
-  m.normals.assign(4, glm::vec3(0, 0, normal_length));
-  m.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-  m.indices = {0, 1, 2, 0, 2, 3};
-  return m;
-}
-
-Scene scene_of(std::vector<Mesh> meshes, Material material = {}) {
-  Scene s;
-  s.materials.push_back(material);
-  for (Mesh& m : meshes)
-    m.material = 0;
-  s.meshes = std::move(meshes);
-  return s;
-}
-
-Camera front_camera(const Scene& s, int size, bool ortho = false, float az = 0.0f,
-                    float distance = 0.0f) {
-  OrbitParams p;
-  p.azimuth_deg = az;
-  p.elevation_deg = 0.0f;
-  p.ortho = ortho;
-  p.distance = distance;
-  return make_orbit_camera(s.bounds(), p, size, size);
-}
-
-Lighting ambient_only(float ambient) {
-  Lighting l;
-  l.ambient = ambient;
-  return l;
-}
-
-RasterRequest request_of(TargetMask targets, IdKind kind = IdKind::Primitive, int ssaa = 1) {
-  RasterRequest r;
-  r.targets = targets;
-  r.id_kind = kind;
-  r.ssaa = ssaa;
-  r.background = glm::vec4(0, 0, 0, 0);
-  return r;
-}
-
-RasterRequest request_of(Target target, IdKind kind = IdKind::Primitive) {
-  return request_of(static_cast<TargetMask>(target), kind);
-}
-
-std::set<int32_t> id_set(const cv::Mat& ids) {
-  std::set<int32_t> s;
-  for (auto it = ids.begin<int32_t>(); it != ids.end<int32_t>(); ++it)
-    s.insert(*it);
-  return s;
-}
-
-float srgb_to_linear(uint8_t c) {
-  const float v = c / 255.0f;
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
-Scene sphere_scene(int seg_u = 256, int seg_v = 128) {
-  Mesh m;
-  m.name = "sphere";
-  add_sphere(m, glm::vec3(0.5f, -0.25f, 1.0f), 1.0f, seg_u, seg_v);
-  set_ids(m, 5, 2);
-  return scene_of({m});
-}
+using namespace sylva::test;
 
 TEST(Raster, SphereNormalsMatchAnalytic) {
   const Scene s = sphere_scene();
@@ -357,17 +252,6 @@ TEST(Raster, BackgroundIsSrgbEncoded) {
 }
 
 // Several separate spheres, each its own primitive id.
-Scene spheres_scene() {
-  Mesh m;
-  for (int i = 0; i < 4; ++i)
-    add_sphere(m, glm::vec3(i * 0.9f, (i % 2) * 0.5f, 0), 0.6f, 64, 32);
-  const size_t per = m.triangle_count() / 4;
-  set_ids(m, 0, 1);
-  for (size_t t = 0; t < m.triangle_count(); ++t)
-    m.primitive_ids[t] = 1 + t / per;
-  return scene_of({m});
-}
-
 TEST(Raster, SsaaKeepsColourAndExactIds) {
   const Scene s = spheres_scene();
   Rasterizer r(gl());
@@ -431,6 +315,45 @@ TEST(Raster, ResizesBetweenRenders) {
   }
 }
 
+// Light conventions on a white quad facing +Z with no ambient: world-fixed vectors are
+// world space, camera-fixed ones view space, point lights do not attenuate, the specular
+// term adds white on top.
+TEST(Raster, LightConventions) {
+  Material white;
+  white.base_color = glm::vec4(1.0f);
+  white.double_sided = true;
+  Scene s = scene_of({make_quad(1.0f, 0.0f)}, white);
+  Rasterizer r(gl());
+  r.upload(s);
+  auto lit = [&](Light light, float az, float distance) {
+    Lighting l = ambient_only(0.0f);
+    light.color = glm::vec3(0.5f);
+    l.lights = {light};
+    const Camera cam = front_camera(s, 32, false, az, distance);
+    const GBuffer g = r.render(cam, l, request_of(Target::Color));
+    return srgb_to_linear(g.color.at<cv::Vec4b>(16, 16)[1]);
+  };
+  Light world;
+  world.camera_fixed = false;
+  world.vector = glm::vec3(0, 0, 1);
+  EXPECT_NEAR(lit(world, 0, 4), 0.5f, 0.01f);
+  EXPECT_NEAR(lit(world, 180, 4), 0.0f, 0.002f);  // the back side faces away from the light
+  world.vector = glm::vec3(0, 0, -1);
+  EXPECT_NEAR(lit(world, 0, 4), 0.0f, 0.002f);
+  Light head;  // camera-fixed, from the viewer: lights whichever side is seen
+  head.vector = glm::vec3(0, 0, 1);
+  EXPECT_NEAR(lit(head, 0, 4), 0.5f, 0.01f);
+  EXPECT_NEAR(lit(head, 180, 4), 0.5f, 0.01f);
+  Light point;  // at the eye, in view space
+  point.type = Light::Type::Point;
+  point.vector = glm::vec3(0.0f);
+  EXPECT_NEAR(lit(point, 0, 4), 0.5f, 0.01f);
+  EXPECT_NEAR(lit(point, 0, 8), 0.5f, 0.01f);  // no fall-off with distance
+  head.specular = 1.0f;
+  head.shininess = 8.0f;
+  EXPECT_NEAR(lit(head, 0, 4), 1.0f, 0.01f);  // 0.5 diffuse + 0.5 highlight (N = H)
+}
+
 TEST(Raster, InvalidRequestsThrow) {
   const Scene s = sphere_scene(8, 4);
   Rasterizer r(gl());
@@ -439,6 +362,14 @@ TEST(Raster, InvalidRequestsThrow) {
   EXPECT_THROW(
       r.render(cam, ambient_only(1), request_of(Target::Id | Target::Color, IdKind::Object, 5)),
       InputError);
+  EXPECT_THROW(
+      r.render(cam, ambient_only(1), request_of(Target::Id | Target::Color, IdKind::Object, 0)),
+      InputError);
+  EXPECT_NO_THROW(r.render(cam, ambient_only(1), request_of(kAllTargetsMask, IdKind::Object, 4)));
+  // 4096^2 at SSAA 4 with every target would need ~13 GiB: refused before allocating.
+  const Camera huge = front_camera(s, 4096);
+  EXPECT_THROW(r.render(huge, ambient_only(1), request_of(kAllTargetsMask, IdKind::Object, 4)),
+               InputError);
   Lighting many = Lighting::three_point();
   many.lights.resize(kMaxLights + 1);
   EXPECT_THROW(r.render(cam, many, request_of(Target::Id | Target::Color)), InputError);
