@@ -33,7 +33,8 @@ nlohmann::json describe(const Scene& scene) {
   j["primitives"] = scene.max_primitive_id();
   j["dropped_degenerate_triangles"] = scene.report.dropped_degenerate;
   json roles = json::object();
-  for (int r = 0; r < 4; ++r) roles[role_name(static_cast<Role>(r))] = role_tris[r];
+  for (int r = 0; r < 4; ++r)
+    roles[role_name(static_cast<Role>(r))] = role_tris[r];
   j["triangles_by_role"] = roles;
   j["foliage"] = {{"rule", scene.report.foliage_rule}, {"reason", scene.report.foliage_reason}};
   j["cluster_method"] = scene.report.cluster_method;
@@ -87,7 +88,8 @@ void print_text(const nlohmann::json& j) {
   std::printf("bounds      (%g, %g, %g) .. (%g, %g, %g), diagonal %g\n", b["min"][0].get<double>(),
               b["min"][1].get<double>(), b["min"][2].get<double>(), b["max"][0].get<double>(),
               b["max"][1].get<double>(), b["max"][2].get<double>(), b["diagonal"].get<double>());
-  for (auto& w : j["warnings"]) std::printf("warning     %s\n", w.get<std::string>().c_str());
+  for (auto& w : j["warnings"])
+    std::printf("warning     %s\n", w.get<std::string>().c_str());
 }
 
 }  // namespace

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <opencv2/imgproc.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -24,7 +24,8 @@ void check_output_path(const std::string& option, const std::string& path,
                        const std::vector<std::string>& extensions) {
   fs::path p(path);
   std::string ext = p.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   bool ok = false;
   std::string allowed;
   for (const std::string& e : extensions) {
@@ -52,7 +53,7 @@ std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
   resolve_view_options(vo);
   auto f = std::make_unique<Frame>();
   f->scene = load_scene_for_cli(so);
-  f->setup.camera = make_orbit_camera(f->scene.bounds(), vo.orbit, vo.width, vo.height);
+  f->setup.camera = make_orbit_camera(f->scene.framing_sphere(), vo.orbit, vo.width, vo.height);
   f->context = create_gl_context();
   f->rasterizer = std::make_unique<Rasterizer>(*f->context);
   f->rasterizer->upload(f->scene);
@@ -69,13 +70,18 @@ void write_graph(const std::string& path, const RenderGraph& graph) {
 std::string camera_json(const Camera& c) {
   auto mat = [](const glm::mat4& m) {
     nlohmann::json rows = nlohmann::json::array();  // row-major: rows[i][j] = m[j][i]
-    for (int i = 0; i < 4; ++i) rows.push_back({m[0][i], m[1][i], m[2][i], m[3][i]});
+    for (int i = 0; i < 4; ++i)
+      rows.push_back({m[0][i], m[1][i], m[2][i], m[3][i]});
     return rows;
   };
-  nlohmann::json j = {{"width", c.width},         {"height", c.height},
-                      {"near", c.near_plane},     {"far", c.far_plane},
-                      {"orthographic", c.ortho},  {"eye", {c.eye.x, c.eye.y, c.eye.z}},
-                      {"view", mat(c.view)},      {"projection", mat(c.proj)},
+  nlohmann::json j = {{"width", c.width},
+                      {"height", c.height},
+                      {"near", c.near_plane},
+                      {"far", c.far_plane},
+                      {"orthographic", c.ortho},
+                      {"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                      {"view", mat(c.view)},
+                      {"projection", mat(c.proj)},
                       {"matrix_layout", "row-major, column vectors: p_view = view * p_world"}};
   return j.dump(2) + "\n";
 }
@@ -131,8 +137,7 @@ Action add_buffers_command(CLI::App& app) {
       "buffers", "Write the G-buffers (lossless TIFF/PNG), camera.json and 8-bit previews");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
-  cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")
-      ->required();
+  cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")->required();
   cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka")
       ->capture_default_str();
   cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")

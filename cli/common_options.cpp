@@ -10,8 +10,7 @@
 namespace sylva::cli {
 
 void add_scene_options(CLI::App& cmd, SceneOptions& o) {
-  cmd.add_option("scene", o.path, "Scene file: .glb, .gltf, .obj, .ply, .off or .stl")
-      ->required();
+  cmd.add_option("scene", o.path, "Scene file: .glb, .gltf, .obj, .ply, .off or .stl")->required();
   cmd.add_option("--foliage", o.foliage,
                  "Which triangles are leaves: auto (names leaf/leaves/foliage/needle, else "
                  "alpha-MASK materials), none, all, or a glob on material/mesh names")
@@ -20,8 +19,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
                  "Leaf clusters for k-means when the model has no hierarchy; 0 = auto, "
                  "[0, 4096]")
       ->capture_default_str();
-  cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")
-      ->capture_default_str();
+  cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")->capture_default_str();
 }
 
 Scene load_scene_for_cli(const SceneOptions& o) {
@@ -92,8 +90,8 @@ Light parse_light(const std::string& spec) {
       R"(^(dir|point):([-+0-9.eE]+),([-+0-9.eE]+),([-+0-9.eE]+)(?::([-+0-9.eE]+))?(?::(camera|scene))?$)");
   std::smatch m;
   if (!std::regex_match(spec, m, re))
-    throw InputError("--light", "expected dir|point:X,Y,Z[:INTENSITY[:camera|scene]], got '" +
-                                    spec + "'");
+    throw InputError("--light",
+                     "expected dir|point:X,Y,Z[:INTENSITY[:camera|scene]], got '" + spec + "'");
   Light l;
   l.type = m[1] == "dir" ? Light::Type::Directional : Light::Type::Point;
   try {
@@ -121,11 +119,11 @@ void resolve_view_options(ViewOptions& o) {
   if (static_cast<long long>(o.width) * o.ssaa > 16384 ||
       static_cast<long long>(o.height) * o.ssaa > 16384)
     throw InputError("--ssaa", "size x ssaa must stay within 16384 pixels per side");
-  if (!(o.ambient >= 0.0f && o.ambient <= 1.0f))
-    throw InputError("--ambient", "must be in [0, 1]");
+  if (!(o.ambient >= 0.0f && o.ambient <= 1.0f)) throw InputError("--ambient", "must be in [0, 1]");
   parse_background(o.background);
   if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
-  for (const std::string& l : o.lights) parse_light(l);
+  for (const std::string& l : o.lights)
+    parse_light(l);
   if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object")
     throw InputError("--id", "expected primitive, cluster or object, got '" + o.id_kind + "'");
 }
@@ -144,7 +142,8 @@ Lighting lighting_for(const ViewOptions& o) {
   Lighting l = Lighting::three_point();
   if (!o.lights.empty()) {
     l.lights.clear();
-    for (const std::string& spec : o.lights) l.lights.push_back(parse_light(spec));
+    for (const std::string& spec : o.lights)
+      l.lights.push_back(parse_light(spec));
   }
   l.ambient = o.ambient;
   return l;

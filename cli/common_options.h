@@ -31,7 +31,7 @@ struct ViewOptions {
   float ambient = 0.35f;
   std::string id_kind = "primitive";
   std::vector<std::string> lights;  // --light specs; empty = the three-light default
-  int width = 0, height = 0;  // parsed from size
+  int width = 0, height = 0;        // parsed from size
 };
 void add_view_options(CLI::App& cmd, ViewOptions& o);
 // Parses and range-checks the view options (size, ssaa, background, ambient, id kind).

@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    for (CLI::App* sub : app.get_subcommands()) actions.at(sub)();
+    for (CLI::App* sub : app.get_subcommands())
+      actions.at(sub)();
   } catch (const sylva::InputError& e) {
     std::fprintf(stderr, "sylva: error: %s\n", e.what());
     return 2;

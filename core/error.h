@@ -19,11 +19,12 @@ class InputError : public std::runtime_error {
   std::string m_where;
 };
 
-[[noreturn]] void check_failed(const char* expr, const char* file, int line, const std::string& msg);
+[[noreturn]] void check_failed(const char* expr, const char* file, int line,
+                               const std::string& msg);
 
 }  // namespace sylva
 
-#define SYLVA_CHECK(cond, msg)                                   \
-  do {                                                           \
+#define SYLVA_CHECK(cond, msg)                                            \
+  do {                                                                    \
     if (!(cond)) ::sylva::check_failed(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

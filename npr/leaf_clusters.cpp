@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <opencv2/core.hpp>
 
 #include "core/error.h"
@@ -10,6 +11,9 @@
 
 namespace sylva {
 namespace {
+
+// Leaves beyond this count are clustered through a strided sample (see kmeans_labels).
+constexpr size_t kMaxKMeansPoints = 20000;
 
 // Leaves are the foliage primitives, in primitive-id order (the order Hierarchy::leaf_branch
 // uses). leaf_of[id] is the leaf index of primitive `id`, or -1.
@@ -68,23 +72,80 @@ std::vector<int32_t> kmeans_labels(const Scene& scene, const Leaves& leaves, int
       points.at<float>(int(l), d) /= float(std::max(weight[l], 1));
   std::vector<int32_t> labels(leaves.count, 0);
   if (k <= 1) return labels;
+  // Large foliage: fit the centres on an evenly strided sample, then label every leaf by its
+  // nearest centre. Keeps millions of leaves at a fraction of a second, deterministically.
+  const size_t stride = std::max<size_t>(1, leaves.count / kMaxKMeansPoints);
+  cv::Mat sample = points;
+  if (stride > 1) {
+    sample = cv::Mat(int((leaves.count + stride - 1) / stride), 3, CV_32F);
+    for (int r = 0; r < sample.rows; ++r)
+      points.row(r * int(stride)).copyTo(sample.row(r));
+  }
+  k = std::min(k, sample.rows);
   cv::RNG& rng = cv::theRNG();
   const uint64 saved = rng.state;
   rng.state = seed ? seed : 0xffffffffu;  // cv::RNG treats state 0 as this value too
-  cv::Mat out;
-  cv::kmeans(points, k, out,
+  cv::Mat out, centres;
+  cv::kmeans(sample, k, out,
              cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-6), 3,
-             cv::KMEANS_PP_CENTERS);
+             cv::KMEANS_PP_CENTERS, centres);
   rng.state = saved;
-  for (size_t l = 0; l < leaves.count; ++l)
-    labels[l] = out.at<int>(int(l));
+  for (size_t l = 0; l < leaves.count; ++l) {
+    if (stride == 1) {
+      labels[l] = out.at<int>(int(l));
+      continue;
+    }
+    float best = std::numeric_limits<float>::max();
+    const float* p = points.ptr<float>(int(l));
+    for (int c = 0; c < k; ++c) {
+      const float* q = centres.ptr<float>(c);
+      const float d = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                      (p[2] - q[2]) * (p[2] - q[2]);
+      if (d < best) {
+        best = d;
+        labels[l] = c;
+      }
+    }
+  }
   return labels;
 }
 
-float median_diameter(std::vector<float> d) {
-  if (d.empty()) return 0.0f;
-  std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
-  return d[d.size() / 2];
+size_t count_roots(const std::vector<int32_t>& roots, size_t branches) {
+  std::vector<char> seen(branches, 0);
+  size_t n = 0;
+  for (int32_t r : roots)
+    if (!seen[size_t(r)]) seen[size_t(r)] = 1, ++n;
+  return n;
+}
+
+// Automatic division diameter: among the hierarchy's own diameters (plus one above them all,
+// which puts every leaf in one cluster), the one whose cluster count is closest to `target`.
+// The count falls monotonically as the division grows, so a binary search finds it.
+float auto_division(const Hierarchy& h, size_t target) {
+  std::vector<float> d = h.branch_diameter;
+  std::sort(d.begin(), d.end());
+  d.erase(std::unique(d.begin(), d.end()), d.end());
+  d.push_back(d.empty() ? 1.0f : d.back() * 2.0f + 1.0f);
+  const auto count = [&](size_t i) {
+    return count_roots(hierarchy_labels(h, d[i]), h.branch_parent.size());
+  };
+  size_t lo = 0, hi = d.size() - 1;  // first index whose count <= target
+  while (lo < hi) {
+    const size_t mid = (lo + hi) / 2;
+    if (count(mid) <= target)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  if (lo > 0) {
+    const size_t above = count(lo - 1), below = count(lo);
+    if (above - target < target - below) return d[lo - 1];
+  }
+  return d[lo];
+}
+
+size_t default_cluster_count(size_t leaves) {
+  return std::clamp<size_t>(size_t(std::lround(std::sqrt(double(leaves) / 2.0))), 1, 64);
 }
 
 std::string format(const char* fmt, double a) {
@@ -111,8 +172,11 @@ void assign_clusters(Scene& scene, const ClusterOptions& options) {
   if (options.use_hierarchy && !h.empty() && leaves.count > 0) {
     validate_hierarchy(h, "sylva_hierarchy");
     if (h.leaf_branch.size() == leaves.count) {
-      const float division = options.division_diameter > 0.0f ? options.division_diameter
-                                                              : median_diameter(h.branch_diameter);
+      const float division =
+          options.division_diameter > 0.0f
+              ? options.division_diameter
+              : auto_division(h, options.clusters > 0 ? size_t(options.clusters)
+                                                      : default_cluster_count(leaves.count));
       labels = hierarchy_labels(h, division);
       scene.report.cluster_method = format("hierarchy (division diameter %g)", division);
     } else {
@@ -123,8 +187,7 @@ void assign_clusters(Scene& scene, const ClusterOptions& options) {
   }
   if (labels.empty() && leaves.count > 0) {
     int k = options.clusters;
-    if (k == 0) k = int(std::lround(std::sqrt(double(leaves.count) / 2.0)));
-    k = std::clamp(k, 1, options.clusters == 0 ? 64 : 4096);
+    if (k == 0) k = int(default_cluster_count(leaves.count));
     k = std::min<int>(k, int(leaves.count));
     labels = kmeans_labels(scene, leaves, k, options.seed);
     scene.report.cluster_method =

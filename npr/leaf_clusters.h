@@ -12,13 +12,19 @@
 namespace sylva {
 
 struct ClusterOptions {
-  int clusters = 0;             // k-means k; 0 = auto (about sqrt(leaves / 2), in [1, 64])
-  uint64_t seed = 1;            // k-means seed
-  float division_diameter = 0;  // scene units; 0 = auto (median branch diameter)
+  int clusters = 0;   // wanted cluster count; 0 = auto (about sqrt(leaves / 2), in [1, 64])
+  uint64_t seed = 1;  // k-means seed
+  float division_diameter = 0;  // scene units; 0 = auto (the hierarchy diameter giving a
+                                // count closest to `clusters`)
   bool use_hierarchy = true;    // false forces k-means even when a hierarchy is present
 };
 
 // Valid ranges: clusters in [0, 4096]; division_diameter >= 0. Throws InputError otherwise.
+// Needs roles and primitive ids (finish_scene). A hierarchy whose leaf count differs from the
+// scene's foliage primitives is ignored with a report warning (k-means instead). k is clamped
+// to the leaf count; clusters are renumbered by first appearance over leaves. Above 20,000
+// leaves the k-means centres are fitted on an evenly strided sample and every leaf takes its
+// nearest centre. Writes report.cluster_method.
 void assign_clusters(Scene& scene, const ClusterOptions& options);
 
 }  // namespace sylva

@@ -4,7 +4,9 @@
 
 namespace sylva {
 
-int build_standard(RenderGraph&, const GBufferHandles& gbuffer) { return gbuffer.color; }
+int build_standard(RenderGraph&, const GBufferHandles& gbuffer) {
+  return gbuffer.color;
+}
 
 const std::vector<StyleInfo>& style_table() {
   static const std::vector<StyleInfo> table = {

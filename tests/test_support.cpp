@@ -16,10 +16,18 @@ namespace fs = std::filesystem;
 
 namespace sylva::test {
 
-std::string shared_dir() { return SYLVA_SHARED_DIR; }
-std::string source_dir() { return SYLVA_SOURCE_DIR; }
-std::string fern_path() { return shared_dir() + "/assets/polyhaven_fern_02.glb"; }
-std::string sylva_binary() { return SYLVA_BINARY; }
+std::string shared_dir() {
+  return SYLVA_SHARED_DIR;
+}
+std::string source_dir() {
+  return SYLVA_SOURCE_DIR;
+}
+std::string fern_path() {
+  return shared_dir() + "/assets/polyhaven_fern_02.glb";
+}
+std::string sylva_binary() {
+  return SYLVA_BINARY;
+}
 
 namespace {
 struct TempRoot {
@@ -56,7 +64,8 @@ RunResult run_sylva(const std::string& args) {
   if (!pipe) throw std::runtime_error("popen failed");
   std::array<char, 4096> buf;
   size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0)
+    r.output.append(buf.data(), n);
   int st = pclose(pipe);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
@@ -74,6 +83,8 @@ void write_file(const std::string& path, const std::string& bytes) {
   out << bytes;
 }
 
-bool file_exists(const std::string& path) { return fs::exists(path); }
+bool file_exists(const std::string& path) {
+  return fs::exists(path);
+}
 
 }  // namespace sylva::test

@@ -8,15 +8,15 @@ namespace sylva::test {
 
 std::string shared_dir();  // ../shared (CMake SYLVA_SHARED_DIR)
 std::string source_dir();
-std::string fern_path();   // shared/assets/polyhaven_fern_02.glb
+std::string fern_path();  // shared/assets/polyhaven_fern_02.glb
 std::string sylva_binary();
 
 // A fresh empty directory under the build's temp area, removed at process exit.
 std::string temp_dir(const std::string& tag);
 
 struct RunResult {
-  int status = -1;      // exit status
-  std::string output;   // stdout + stderr
+  int status = -1;     // exit status
+  std::string output;  // stdout + stderr
 };
 // Runs `sylva <args>` through /bin/sh (args are passed verbatim).
 RunResult run_sylva(const std::string& args);

@@ -33,12 +33,18 @@ void validate(const OrbitParams& p, int width, int height) {
 }  // namespace
 
 Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height) {
-  validate(params, width, height);
-  if (bounds.empty()) throw InputError("scene", "no geometry");
+  Sphere s;
+  if (!bounds.empty()) s = Sphere{bounds.center(), 0.5f * bounds.diagonal()};
+  return make_orbit_camera(s, params, width, height);
+}
 
-  const glm::vec3 centre = bounds.center();
+Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int width, int height) {
+  validate(params, width, height);
+  if (sphere.empty() || !std::isfinite(sphere.radius)) throw InputError("scene", "no geometry");
+
+  const glm::vec3 centre = sphere.centre;
   // A single point has no extent; give it one so the projection stays well-defined.
-  const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f * (1.0f + glm::length(centre)));
+  const float radius = std::max(sphere.radius, 1e-6f * (1.0f + glm::length(centre)));
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const float half_vfov = glm::radians(params.fov_deg) * 0.5f;
   const float half_hfov = std::atan(std::tan(half_vfov) * aspect);

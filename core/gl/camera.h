@@ -30,6 +30,9 @@ struct Camera {
 };
 
 // Throws InputError naming the option (--elevation, --distance, --fov) when out of range.
+// The camera orbits the sphere's centre; automatic distance (and the orthographic extent) fit
+// the sphere with a 5% margin. The Bounds form frames the box's circumscribed sphere.
+Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int width, int height);
 Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
 }  // namespace sylva

@@ -11,7 +11,8 @@ namespace sylva {
 struct Light {
   enum class Type { Directional, Point } type = Type::Directional;
   // Directional: direction the light travels *from* (toward the light), normalised on use.
-  // Point: position. World space, or view space when camera_fixed.
+  // Point: position; no distance attenuation (NPR lighting wants the same tone near and far).
+  // World space, or view space when camera_fixed.
   glm::vec3 vector{0.0f, 1.0f, 0.0f};
   glm::vec3 color{1.0f};    // linear RGB intensity, >= 0
   float specular = 0.0f;    // specular weight, [0, 1]

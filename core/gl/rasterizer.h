@@ -3,9 +3,10 @@
 // sum over lights of diffuse + specular, with ka decoded from the normal's length and the
 // normal re-normalised in the vertex shader. Leaves are drawn double-sided (normal flipped
 // with gl_FrontFacing); alpha-MASK materials discard fragments below the cutoff from the
-// base-colour texture's alpha, so every target follows the leaf shape. SSAA renders at
-// ssaa x size and down-samples per kind (average colour/normal/depth/position/ka, nearest
-// for ids).
+// base-colour texture's alpha, so every target follows the leaf shape; BLEND materials are
+// drawn the same way with cutoff 0.5 (a G-buffer holds one surface per pixel). SSAA renders
+// at ssaa x size and down-samples per kind (see downsample.h: colour averaged in linear
+// light, normal/depth/position/ka averaged over covered samples, ids by majority).
 #pragma once
 
 #include <memory>
@@ -27,6 +28,7 @@ struct RasterRequest {
 
 class Rasterizer {
  public:
+  // The context must outlive the Rasterizer; GL objects are created in it on upload/render.
   explicit Rasterizer(GlContext& context);
   ~Rasterizer();
   Rasterizer(const Rasterizer&) = delete;

@@ -93,15 +93,13 @@ vec3 srgb_encode(vec3 c) {
 }
 
 vec3 surface_normal() {
-  vec3 n;
-  if (u_has_normals) {
-    float len = length(v_normal);
-    n = len > 1e-12 ? v_normal / len : vec3(0.0, 0.0, 1.0);
-  } else {
-    n = normalize(cross(dFdx(v_view_pos), dFdy(v_view_pos)));  // faces the viewer
+  if (!u_has_normals) {
+    // Flat normal from screen-space derivatives: always faces the viewer, no flip needed.
+    return normalize(cross(dFdx(v_view_pos), dFdy(v_view_pos)));
   }
-  if (u_double_sided && !gl_FrontFacing) n = -n;
-  return n;
+  float len = length(v_normal);
+  vec3 n = len > 1e-12 ? v_normal / len : vec3(0.0, 0.0, 1.0);
+  return u_double_sided && !gl_FrontFacing ? -n : n;
 }
 
 void main() {
@@ -120,7 +118,7 @@ void main() {
   // Luft et al. Eq. 1 (no shadowing term): I = Ia ka + sum_i Ii [kd (N.L) + ks (N.H)^n],
   // Blinn's half vector in place of Phong's reflection vector. Point lights do not attenuate.
   vec3 v = u_ortho ? vec3(0.0, 0.0, 1.0) : normalize(-v_view_pos);
-  vec3 diffuse = vec3(u_ambient * v_ka);
+  vec3 diffuse = vec3(u_ambient * clamp(v_ka, 0.0, 1.0));
   vec3 specular = vec3(0.0);
   for (int i = 0; i < u_light_count; ++i) {
     vec3 l = u_light_vector[i].xyz;
@@ -154,7 +152,7 @@ void main() {
   o_id = v_id;
 #endif
 #ifdef OUT_KA
-  o_ka = v_ka;
+  o_ka = clamp(v_ka, 0.0, 1.0);  // interpolating 1.0 can round to 1.0000001
 #endif
 }
 )GLSL";

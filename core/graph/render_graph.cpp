@@ -5,7 +5,9 @@
 
 namespace sylva {
 
-bool PassContext::wanted(int resource) const { return m_graph.is_live(resource); }
+bool PassContext::wanted(int resource) const {
+  return m_graph.is_live(resource);
+}
 
 const std::any& PassContext::value(int resource) const {
   const auto& reads = m_graph.m_passes[m_pass].reads;
@@ -81,11 +83,13 @@ void RenderGraph::compile() {
     pass.live = std::any_of(pass.writes.begin(), pass.writes.end(),
                             [&](int w) { return m_resources[w].live; });
     if (!pass.live) continue;
-    for (int r : pass.reads) m_resources[r].live = true;
+    for (int r : pass.reads)
+      m_resources[r].live = true;
   }
   for (const Pass& pass : m_passes)
     if (pass.live)
-      for (int r : pass.reads) ++m_resources[r].pending_reads;
+      for (int r : pass.reads)
+        ++m_resources[r].pending_reads;
   m_compiled = true;
 }
 
@@ -136,16 +140,18 @@ std::string RenderGraph::to_dot() const {
   auto style = [](bool live) { return live ? "" : ", style=dashed, color=grey, fontcolor=grey"; };
   s << "digraph sylva {\n  rankdir=LR;\n";
   for (size_t p = 0; p < m_passes.size(); ++p)
-    s << "  p" << p << " [shape=box, label=\"" << m_passes[p].name << "\"" << style(m_passes[p].live)
-      << "];\n";
+    s << "  p" << p << " [shape=box, label=\"" << m_passes[p].name << "\""
+      << style(m_passes[p].live) << "];\n";
   for (size_t r = 0; r < m_resources.size(); ++r) {
     const Resource& res = m_resources[r];
     s << "  r" << r << " [shape=ellipse, label=\"" << res.name << "\""
       << (res.presented ? ", peripheries=2" : "") << style(res.live) << "];\n";
   }
   for (size_t p = 0; p < m_passes.size(); ++p) {
-    for (int r : m_passes[p].reads) s << "  r" << r << " -> p" << p << ";\n";
-    for (int w : m_passes[p].writes) s << "  p" << p << " -> r" << w << ";\n";
+    for (int r : m_passes[p].reads)
+      s << "  r" << r << " -> p" << p << ";\n";
+    for (int w : m_passes[p].writes)
+      s << "  p" << p << " -> r" << w << ";\n";
   }
   s << "}\n";
   return s.str();

@@ -14,7 +14,8 @@ namespace sylva {
 namespace {
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 }  // namespace
@@ -39,8 +40,8 @@ void write_image(const std::string& path, const cv::Mat& image) {
   } else if (ext == ".jpg" || ext == ".jpeg") {
     params = {cv::IMWRITE_JPEG_QUALITY, 95};
   } else {
-    throw InputError(path, "unsupported image extension '" + ext +
-                               "' (allowed: .png, .tiff, .tif, .exr, .jpg)");
+    throw InputError(
+        path, "unsupported image extension '" + ext + "' (allowed: .png, .tiff, .tif, .exr, .jpg)");
   }
   std::vector<uchar> bytes;
   bool ok = false;
@@ -119,8 +120,8 @@ cv::Mat preview_position(const cv::Mat& position) {
       if (!covered(p)) continue;
       cv::Vec3b& o = out.at<cv::Vec3b>(y, x);
       for (int c = 0; c < 3; ++c)
-        o[2 - c] = cv::saturate_cast<uchar>(
-            40.0f + 215.0f * (p[c] - lo[c]) / std::max(hi[c] - lo[c], 1e-6f));
+        o[2 - c] = cv::saturate_cast<uchar>(40.0f + 215.0f * (p[c] - lo[c]) /
+                                                        std::max(hi[c] - lo[c], 1e-6f));
     }
   return out;
 }
@@ -133,8 +134,8 @@ cv::Mat preview_ids(const cv::Mat& ids) {
       if (id == 0) continue;
       uint32_t h = id * 2654435761u;  // Knuth's multiplicative hash spreads neighbours apart
       h ^= h >> 15;
-      out.at<cv::Vec3b>(y, x) = cv::Vec3b(64 + (h & 0xBF), 64 + ((h >> 8) & 0xBF),
-                                          64 + ((h >> 16) & 0xBF));
+      out.at<cv::Vec3b>(y, x) =
+          cv::Vec3b(64 + (h & 0xBF), 64 + ((h >> 8) & 0xBF), 64 + ((h >> 16) & 0xBF));
     }
   return out;
 }

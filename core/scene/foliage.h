@@ -11,6 +11,11 @@
 
 namespace sylva {
 
+// foliage_option: "auto" (default), "none", "all" or a glob. In "auto", meshes that already
+// carry roles (glTF "sylva_role" extras) keep them. A glob matching no material or mesh name
+// throws InputError("--foliage", ...) listing the names. report.foliage_rule is one of
+// "--foliage none", "--foliage all", "--foliage '<glob>'", "name match", "alpha MASK",
+// "no foliage found", "sylva_role extras" (possibly "<rule> + sylva_role extras (N meshes)").
 void classify_roles(Scene& scene, const std::string& foliage_option);
 
 // Case-insensitive glob with * and ?.

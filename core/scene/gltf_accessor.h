@@ -74,7 +74,7 @@ class GltfAccessorReader {
 
  private:
   // Accessors without a bufferView allocate zeros; this bounds what a hostile count costs.
-  static constexpr size_t kMaxZeroCount = size_t(1) << 26;
+  static constexpr size_t kMaxZeroCount = size_t(1) << 22;
 
   [[noreturn]] void fail(int index, const char* what, const std::string& msg) const {
     throw InputError(m_path, "accessor " + std::to_string(index) + " (" + what + ") " + msg);

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/scene/glb_container.h"
 #include "core/scene/gltf_accessor.h"
 #include "core/scene/load.h"
 #include "core/scene/texture_decode.h"
@@ -29,39 +30,6 @@ std::string one_line(std::string s) {
   while (!s.empty() && s.back() == ' ')
     s.pop_back();
   return s;
-}
-
-uint32_t le32(const std::string& b, size_t at) {
-  uint32_t v;
-  std::memcpy(&v, b.data() + at, 4);
-  return v;
-}
-
-// The GLB container, checked before tinygltf sees it so truncation gets a precise message.
-// Returns the JSON chunk; `length` is the declared (and verified) total size.
-std::string check_glb(const std::string& path, const std::string& bytes, size_t& length) {
-  if (bytes.size() < 12) throw InputError(path, "truncated: too short for a GLB header");
-  if (bytes.compare(0, 4, "glTF") != 0)
-    throw InputError(path, "not a binary glTF file (no 'glTF' magic at the start)");
-  if (le32(bytes, 4) != 2)
-    throw InputError(path,
-                     "unsupported GLB version " + std::to_string(le32(bytes, 4)) + " (need 2)");
-  length = le32(bytes, 8);
-  if (length > bytes.size())
-    throw InputError(path, "truncated: the GLB header says " + std::to_string(length) +
-                               " bytes but the file has " + std::to_string(bytes.size()));
-  if (length < 20) throw InputError(path, "truncated: no JSON chunk");
-  const uint64_t json_len = le32(bytes, 12);
-  if (le32(bytes, 16) != 0x4E4F534Au) throw InputError(path, "the first GLB chunk is not JSON");
-  if (20 + json_len > length) throw InputError(path, "truncated: the JSON chunk runs past the end");
-  const uint64_t bin_at = 20 + json_len;
-  if (bin_at < length) {
-    if (bin_at + 8 > length) throw InputError(path, "truncated: incomplete BIN chunk header");
-    const uint64_t bin_len = le32(bytes, bin_at);
-    if (bin_at + 8 + bin_len > length)
-      throw InputError(path, "truncated: the BIN chunk runs past the end of the file");
-  }
-  return bytes.substr(20, json_len);
 }
 
 // Keeps the encoded bytes; decoding happens later with checked buffer ranges, and only for
@@ -125,8 +93,20 @@ class Reader {
       if (!(mat.alpha_cutoff >= 0.0f && mat.alpha_cutoff <= 1.0f))
         fail("material '" + src.name + "': alphaCutoff must be in [0, 1]");
       mat.double_sided = src.doubleSided;
+      if (mat.alpha_mode != AlphaMode::Opaque && mat.base_color_texture >= 0 &&
+          opaque(m_scene.textures[size_t(mat.base_color_texture)]))
+        m_scene.report.warnings.push_back(
+            "material '" + src.name + "': alpha " + alpha_mode_name(mat.alpha_mode) +
+            " but its base colour texture has no alpha (every texel opaque), so only the "
+            "geometry shapes the leaves");
       m_scene.materials.push_back(mat);
     }
+  }
+
+  static bool opaque(const Texture& t) {
+    for (size_t i = 3; i < t.rgba.size(); i += 4)
+      if (t.rgba[i] != 255) return false;
+    return true;
   }
 
   int texture(int tex) {
@@ -403,10 +383,14 @@ Scene read_gltf(const std::string& path) {
     c = char(std::tolower(static_cast<unsigned char>(c)));
   const bool binary = ext == ".glb";
   size_t length = 0;
-  const std::string json_text = binary ? check_glb(path, bytes, length) : bytes;
+  const std::string json_text = binary ? glb_json_chunk(path, bytes, length) : bytes;
   Json json;
   try {
-    json = Json::parse(json_text);
+    // tinygltf converts extras recursively: deep nesting would overflow its stack.
+    json = Json::parse(json_text, [&](int depth, Json::parse_event_t, Json&) {
+      if (depth > 64) throw InputError(path, "invalid glTF: JSON nested deeper than 64 levels");
+      return true;
+    });
   } catch (const Json::exception& e) {
     throw InputError(path, "invalid JSON: " + one_line(e.what()));
   }

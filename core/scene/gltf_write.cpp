@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/scene/glb_container.h"
 
 namespace sylva {
 namespace {
@@ -154,16 +155,6 @@ Json mesh_json(const Mesh& mesh, BinBuilder& bin) {
   return j;
 }
 
-void append_chunk(std::string& out, const std::string& data, uint32_t type, char pad) {
-  std::string body = data;
-  while (body.size() % 4)
-    body.push_back(pad);
-  const uint32_t len = uint32_t(body.size());
-  out.append(reinterpret_cast<const char*>(&len), 4);
-  out.append(reinterpret_cast<const char*>(&type), 4);
-  out += body;
-}
-
 }  // namespace
 
 void write_glb(const Scene& scene, const std::string& path) {
@@ -217,13 +208,7 @@ void write_glb(const Scene& scene, const std::string& path) {
     gltf["accessors"] = bin.accessors();
   }
 
-  std::string body;
-  append_chunk(body, gltf.dump(), 0x4E4F534Au, ' ');
-  if (!bin.bin().empty()) append_chunk(body, bin.bin(), 0x004E4942u, '\0');
-  std::string glb = "glTF";
-  const uint32_t header[2] = {2u, uint32_t(12 + body.size())};
-  glb.append(reinterpret_cast<const char*>(header), 8);
-  glb += body;
+  const std::string glb = glb_assemble(gltf.dump(), bin.bin());
   write_file_atomic(path, glb);
 }
 

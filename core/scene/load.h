@@ -20,7 +20,14 @@ struct LoadOptions {
 Scene load_scene(const std::string& path, const LoadOptions& options = {});
 
 // The part of load_scene after parsing, for scenes built in memory (samples, tests):
-// validation, degenerate removal, roles (unless keep_roles), primitive ids, cluster ids = 1.
+// validation (indices, finite positions, attribute counts, material/texture references, the
+// hierarchy), removal of triangles with a repeated index or an area below
+// 1e-12 * bounds-diagonal^2 (counted in report.dropped_degenerate; meshes left empty are
+// removed), normals computed when absent and repaired (non-finite or zero -> the adjacent
+// faces' normal) and made unit length, roles (unless keep_roles and every mesh has them;
+// in "auto" mode roles already present, e.g. from glTF extras, are kept), primitive ids,
+// cluster ids = 1. Throws InputError(report.source or "scene", ...) on bad input or when no
+// triangle is left.
 void finish_scene(Scene& scene, const LoadOptions& options, bool keep_roles = false);
 
 // Area-weighted vertex normals (unit length; (0, 0, 1) for vertices on no proper triangle).

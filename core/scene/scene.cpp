@@ -1,24 +1,32 @@
 #include "core/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sylva {
 
 const char* role_name(Role r) {
   switch (r) {
-    case Role::Foliage: return "foliage";
-    case Role::Wood: return "wood";
-    case Role::Ground: return "ground";
-    case Role::Other: return "other";
+    case Role::Foliage:
+      return "foliage";
+    case Role::Wood:
+      return "wood";
+    case Role::Ground:
+      return "ground";
+    case Role::Other:
+      return "other";
   }
   return "other";
 }
 
 const char* alpha_mode_name(AlphaMode m) {
   switch (m) {
-    case AlphaMode::Opaque: return "OPAQUE";
-    case AlphaMode::Mask: return "MASK";
-    case AlphaMode::Blend: return "BLEND";
+    case AlphaMode::Opaque:
+      return "OPAQUE";
+    case AlphaMode::Mask:
+      return "MASK";
+    case AlphaMode::Blend:
+      return "BLEND";
   }
   return "OPAQUE";
 }
@@ -26,8 +34,24 @@ const char* alpha_mode_name(AlphaMode m) {
 Bounds Scene::bounds() const {
   Bounds b;
   for (const Mesh& m : meshes)
-    for (uint32_t i : m.indices) b.extend(m.positions[i]);
+    for (uint32_t i : m.indices)
+      b.extend(m.positions[i]);
   return b;
+}
+
+Sphere Scene::framing_sphere() const {
+  const Bounds b = bounds();
+  Sphere s;
+  if (b.empty()) return s;
+  s.centre = b.center();
+  float r2 = 0.0f;
+  for (const Mesh& m : meshes)
+    for (uint32_t i : m.indices) {
+      const glm::vec3 d = m.positions[i] - s.centre;
+      r2 = std::max(r2, glm::dot(d, d));
+    }
+  s.radius = std::sqrt(r2);
+  return s;
 }
 
 Bounds Scene::bounds(Role role) const {
@@ -35,7 +59,8 @@ Bounds Scene::bounds(Role role) const {
   for (const Mesh& m : meshes) {
     for (size_t t = 0; t < m.triangle_count(); ++t) {
       if (m.roles[t] != role) continue;
-      for (int k = 0; k < 3; ++k) b.extend(m.positions[m.indices[3 * t + k]]);
+      for (int k = 0; k < 3; ++k)
+        b.extend(m.positions[m.indices[3 * t + k]]);
     }
   }
   return b;
@@ -43,27 +68,31 @@ Bounds Scene::bounds(Role role) const {
 
 size_t Scene::triangle_count() const {
   size_t n = 0;
-  for (const Mesh& m : meshes) n += m.triangle_count();
+  for (const Mesh& m : meshes)
+    n += m.triangle_count();
   return n;
 }
 
 size_t Scene::vertex_count() const {
   size_t n = 0;
-  for (const Mesh& m : meshes) n += m.positions.size();
+  for (const Mesh& m : meshes)
+    n += m.positions.size();
   return n;
 }
 
 uint32_t Scene::max_primitive_id() const {
   uint32_t n = 0;
   for (const Mesh& m : meshes)
-    for (uint32_t id : m.primitive_ids) n = std::max(n, id);
+    for (uint32_t id : m.primitive_ids)
+      n = std::max(n, id);
   return n;
 }
 
 uint32_t Scene::max_cluster_id() const {
   uint32_t n = 0;
   for (const Mesh& m : meshes)
-    for (uint32_t id : m.cluster_ids) n = std::max(n, id);
+    for (uint32_t id : m.cluster_ids)
+      n = std::max(n, id);
   return n;
 }
 

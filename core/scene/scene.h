@@ -67,6 +67,14 @@ struct Bounds {
   float diagonal() const { return empty() ? 0.0f : glm::length(max - min); }
 };
 
+// A sphere holding the scene; the camera frames it, so the framing does not change as the
+// view turns (turntables keep their scale).
+struct Sphere {
+  glm::vec3 centre{0.0f};
+  float radius = -1.0f;  // < 0: empty
+  bool empty() const { return radius < 0.0f; }
+};
+
 // Plant structure as written by `sylva sample` (glTF extras "sylva_hierarchy"): branches
 // with their parent and diameter, and for each leaf (foliage primitive, in primitive-id
 // order) the branch carrying it. Empty when the model does not carry it.
@@ -96,6 +104,9 @@ struct Scene {
 
   Bounds bounds() const;
   Bounds bounds(Role role) const;  // bounds of the triangles with this role
+  // Centred on bounds().center(), radius = farthest used vertex: never larger than the box's
+  // circumscribed sphere and, for a tall tree, noticeably tighter.
+  Sphere framing_sphere() const;
   size_t triangle_count() const;
   size_t vertex_count() const;
   uint32_t max_primitive_id() const;

@@ -31,7 +31,8 @@ Coverage compare_with_cards(const Scene& scene, float elevation) {
   };
   cv::Mat cut = render(scene);
   Scene cards = scene;
-  for (Material& m : cards.materials) m.alpha_mode = AlphaMode::Opaque;
+  for (Material& m : cards.materials)
+    m.alpha_mode = AlphaMode::Opaque;
   cv::Mat full = render(cards);
   // Cut-out pixels reveal leaves behind (other ids), so compare coverage, not values.
   return {cv::countNonZero(cut), cv::countNonZero(full),
@@ -55,8 +56,8 @@ TEST(AlphaCutout, FernWithoutAlphaChannelIsCutByGeometryAndWarned) {
   ASSERT_EQ(fern.materials.at(0).alpha_mode, AlphaMode::Mask);
   bool warned = false;
   for (const std::string& w : fern.report.warnings)
-    warned = warned || (w.find("fern_02") != std::string::npos &&
-                        w.find("no alpha") != std::string::npos);
+    warned = warned ||
+             (w.find("fern_02") != std::string::npos && w.find("no alpha") != std::string::npos);
   EXPECT_TRUE(warned) << "expected a warning that fern_02's texture has no alpha";
   Coverage c = compare_with_cards(fern, 60);
   ASSERT_GT(c.full, 1000);

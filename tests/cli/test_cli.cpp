@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 
 int count_lines(const std::string& s) {
   int n = 0;
-  for (char c : s) n += c == '\n';
+  for (char c : s)
+    n += c == '\n';
   return n;
 }
 
@@ -25,8 +26,8 @@ void expect_input_error(const std::string& args, const std::string& needle) {
   EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
   EXPECT_EQ(count_lines(r.output), 1) << args << "\n" << r.output;
   EXPECT_EQ(r.output.rfind("sylva: error: ", 0), 0u) << r.output;
-  EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in "
-                                                      << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos)
+      << "expected '" << needle << "' in " << r.output;
 }
 
 // A small sample tree, generated once per test program.
@@ -80,7 +81,8 @@ TEST(Cli, BadOptionValuesNameTheOption) {
   expect_input_error(base + "--light dir:0,1,0:-0.1", "--light");
   expect_input_error(base + "--light dir:0,1,0:1:sky", "--light");
   std::string nine;
-  for (int i = 0; i < 9; ++i) nine += " --light dir:0,1,0";
+  for (int i = 0; i < 9; ++i)
+    nine += " --light dir:0,1,0";
   expect_input_error(base + nine, "--light");
   expect_input_error(base + "--foliage nomatch*", "--foliage");
   expect_input_error(base + "--clusters 4097", "--clusters");
@@ -135,10 +137,10 @@ TEST(Cli, SameCommandTwiceGivesSameBytes) {
     std::string n = std::to_string(i);
     ASSERT_EQ(run_sylva("sample bush --leaves 500 --seed 9 -o " + dir + "/b" + n + ".glb").status,
               0);
-    ASSERT_EQ(run_sylva("render " + small_tree() + " --size 128 --ssaa 2 -o " + dir + "/r" + n +
-                        ".png")
-                  .status,
-              0);
+    ASSERT_EQ(
+        run_sylva("render " + small_tree() + " --size 128 --ssaa 2 -o " + dir + "/r" + n + ".png")
+            .status,
+        0);
   }
   EXPECT_EQ(read_file(dir + "/b0.glb"), read_file(dir + "/b1.glb"));
   EXPECT_EQ(read_file(dir + "/r0.png"), read_file(dir + "/r1.png"));
@@ -216,7 +218,8 @@ TEST(Cli, WrittenGlbPassesTheKhronosValidator) {
     ASSERT_NE(pipe, nullptr);
     char buf[4096];
     std::string out;
-    while (fgets(buf, sizeof buf, pipe)) out += buf;
+    while (fgets(buf, sizeof buf, pipe))
+      out += buf;
     int status = pclose(pipe);
     EXPECT_EQ(status, 0) << kind << ": " << out;
     EXPECT_NE(out.find("errors=0"), std::string::npos) << kind << ": " << out;

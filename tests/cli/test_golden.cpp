@@ -53,7 +53,8 @@ void check_golden(const Case& c) {
   cv::Mat channels[4];
   cv::split(diff, channels);
   worst = channels[0].clone();
-  for (int i = 1; i < diff.channels(); ++i) worst = cv::max(worst, channels[i]);
+  for (int i = 1; i < diff.channels(); ++i)
+    worst = cv::max(worst, channels[i]);
   cv::Mat failing = worst > kTolerance;
   double fraction = cv::countNonZero(failing) / static_cast<double>(failing.total());
   if (fraction > kMaxFailing) {
@@ -61,13 +62,19 @@ void check_golden(const Case& c) {
     cv::imwrite(base + ".actual.png", got);
     cv::imwrite(base + ".diff.png", worst * 4);
   }
-  EXPECT_LE(fraction, kMaxFailing) << c.name << ": " << fraction * 100
-                                   << "% of pixels differ by more than " << kTolerance;
+  EXPECT_LE(fraction, kMaxFailing)
+      << c.name << ": " << fraction * 100 << "% of pixels differ by more than " << kTolerance;
 }
 
-TEST(Golden, Tree) { check_golden({"tree", "sample:tree", "--size 256 --ssaa 2"}); }
-TEST(Golden, Bush) { check_golden({"bush", "sample:bush", "--size 256 --ssaa 2"}); }
-TEST(Golden, Conifer) { check_golden({"conifer", "sample:conifer", "--size 256 --ssaa 2"}); }
+TEST(Golden, Tree) {
+  check_golden({"tree", "sample:tree", "--size 256 --ssaa 2"});
+}
+TEST(Golden, Bush) {
+  check_golden({"bush", "sample:bush", "--size 256 --ssaa 2"});
+}
+TEST(Golden, Conifer) {
+  check_golden({"conifer", "sample:conifer", "--size 256 --ssaa 2"});
+}
 TEST(Golden, Fern) {
   check_golden({"fern", "assets/polyhaven_fern_02.glb", "--size 256 --ssaa 2 --elevation 35"});
 }

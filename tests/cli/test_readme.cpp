@@ -23,8 +23,8 @@ TEST(Readme, ExampleCommandsRun) {
     std::string cmd = line.substr(6);
     size_t hash = cmd.find("  #");
     if (hash != std::string::npos) cmd = cmd.substr(0, hash);
-    RunResult r = run_sylva("--version >/dev/null && cd " + dir + " && " + sylva_binary() + " " +
-                            cmd);
+    RunResult r =
+        run_sylva("--version >/dev/null && cd " + dir + " && " + sylva_binary() + " " + cmd);
     EXPECT_EQ(r.status, 0) << line << "\n" << r.output;
     ++ran;
   }

@@ -5,8 +5,11 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/scene/gltf_write.h"
 #include "core/scene/load.h"
 #include "npr/leaf_clusters.h"
+#include "samples/plants.h"
+#include "tests/test_support.h"
 
 namespace sylva {
 namespace {
@@ -63,9 +66,19 @@ TEST(Clusters, HierarchyDivisionDiameter) {
   assign_clusters(s, o);
   EXPECT_EQ(leaf_clusters(s), (std::vector<uint32_t>{1, 1, 1, 2, 3}));
   EXPECT_EQ(s.meshes[0].cluster_ids[0], 4u);
-  o.division_diameter = 0.0f;  // auto: median diameter 0.1, so each thin branch alone
+  o.division_diameter = 0.0f;  // auto: the diameter whose count is closest to --clusters
+  o.clusters = 4;              // the thinnest division already gives 4 (each branch alone)
   assign_clusters(s, o);
   EXPECT_EQ(leaf_clusters(s), (std::vector<uint32_t>{1, 2, 1, 3, 4}));
+  o.clusters = 3;  // division 1.0: branch 1 gathers leaves 0-2; leaf 4 sits on the trunk
+  assign_clusters(s, o);
+  EXPECT_EQ(leaf_clusters(s), (std::vector<uint32_t>{1, 1, 1, 2, 3}));
+  EXPECT_NE(s.report.cluster_method.find("division diameter 1)"), std::string::npos)
+      << s.report.cluster_method;
+  o.clusters = 1;
+  assign_clusters(s, o);
+  EXPECT_EQ(leaf_clusters(s), (std::vector<uint32_t>{1, 1, 1, 1, 1}));
+  o.clusters = 0;
   o.division_diameter = 10.0f;  // everything below the trunk's root: one cluster
   assign_clusters(s, o);
   EXPECT_EQ(leaf_clusters(s), (std::vector<uint32_t>{1, 1, 1, 1, 1}));
@@ -115,6 +128,25 @@ TEST(Clusters, KMeansSeparatesGroupsDeterministically) {
   EXPECT_EQ(leaf_clusters(t)[0], 1u);
 }
 
+// Beyond 20,000 leaves the centres come from a strided sample; labels stay right and stable.
+TEST(Clusters, KMeansOnManyLeaves) {
+  std::vector<glm::vec3> c;
+  for (int i = 0; i < 45000; ++i)
+    c.push_back(
+        glm::vec3(100.0f * float(i % 3), 0.01f * float(i / 3 % 100), 0.01f * float(i / 300)));
+  Scene s;
+  s.meshes = {trunk(), leaves_at(c)};
+  finish_scene(s, {});
+  ClusterOptions o;
+  o.clusters = 3;
+  assign_clusters(s, o);
+  const std::vector<uint32_t> ids = leaf_clusters(s);
+  for (size_t i = 0; i < ids.size(); ++i)
+    ASSERT_EQ(ids[i], uint32_t(i % 3 + 1)) << i;
+  assign_clusters(s, o);
+  EXPECT_EQ(leaf_clusters(s), ids);
+}
+
 TEST(Clusters, KAtTheEndsOfItsRange) {
   Scene s = three_groups();
   ClusterOptions o;
@@ -147,6 +179,44 @@ TEST(Clusters, KAtTheEndsOfItsRange) {
   o.clusters = 3;
   o.division_diameter = -1.0f;
   EXPECT_THROW(assign_clusters(s, o), InputError);
+}
+
+// A sample plant keeps its hierarchy through write_glb and load_scene, and the hierarchy
+// rule applies to it after the round trip exactly as before.
+TEST(Clusters, SamplePlantHierarchySurvivesGlb) {
+  PlantOptions po;
+  po.kind = PlantKind::Bush;
+  po.leaves = 400;
+  Scene plant = make_plant(po);
+  const std::string path = test::temp_dir("plant") + "/bush.glb";
+  write_glb(plant, path);
+  Scene loaded = load_scene(path);
+  EXPECT_EQ(loaded.report.foliage_rule, "sylva_role extras");
+  assign_clusters(plant, {});
+  assign_clusters(loaded, {});
+  EXPECT_EQ(loaded.report.cluster_method.find("hierarchy"), 0u) << loaded.report.cluster_method;
+  EXPECT_EQ(loaded.report.cluster_method, plant.report.cluster_method);
+  ASSERT_EQ(loaded.meshes.size(), plant.meshes.size());
+  for (size_t m = 0; m < plant.meshes.size(); ++m) {
+    EXPECT_EQ(loaded.meshes[m].primitive_ids, plant.meshes[m].primitive_ids);
+    EXPECT_EQ(loaded.meshes[m].cluster_ids, plant.meshes[m].cluster_ids);
+  }
+  EXPECT_GT(loaded.max_cluster_id(), 2u);
+}
+
+// The automatic division diameter of a real sample lands near the default count
+// (sqrt(leaves / 2), capped at 64), not at one cluster per twig.
+TEST(Clusters, SampleTreeAutoCountIsNearTheDefault) {
+  for (PlantKind kind : {PlantKind::Tree, PlantKind::Bush, PlantKind::Conifer}) {
+    PlantOptions po;
+    po.kind = kind;
+    po.leaves = 4000;  // default count: lround(sqrt(2000)) = 45
+    Scene plant = make_plant(po);
+    assign_clusters(plant, {});
+    const uint32_t k = plant.max_cluster_id() - 1;  // minus the non-foliage cluster
+    EXPECT_GE(k, 20u) << plant.report.cluster_method;
+    EXPECT_LE(k, 90u) << plant.report.cluster_method;
+  }
 }
 
 TEST(Clusters, NoFoliage) {

@@ -176,5 +176,37 @@ TEST(Camera, SinglePointBoundsStaysFinite) {
   EXPECT_LT(c.near_plane, c.far_plane);
 }
 
+// A tree-like point set (a trunk under a round crown): the framing sphere holds every
+// vertex, touches the farthest one, is tighter than the box's circumscribed sphere, and the
+// camera built from it keeps every vertex on screen from any side.
+TEST(Camera, FramingSphereIsTightAndHoldsEveryVertex) {
+  Scene s;
+  Mesh m;
+  m.positions = {{0, 0, 0}, {0.05f, 0, 0}, {0, 2, 0}};  // trunk
+  for (int i = 0; i < 64; ++i) {                        // crown: a ring of radius 1 at y = 3
+    const float a = 6.2831853f * float(i) / 64.0f;
+    m.positions.push_back({std::cos(a), 3.0f + 0.3f * std::sin(3.0f * a), std::sin(a)});
+  }
+  for (uint32_t i = 1; i + 1 < m.positions.size(); ++i)
+    m.indices.insert(m.indices.end(), {0, i, i + 1});
+  s.meshes.push_back(m);
+  const Sphere sphere = s.framing_sphere();
+  float farthest = 0.0f;
+  for (const glm::vec3& p : m.positions)
+    farthest = std::max(farthest, glm::length(p - sphere.centre));
+  EXPECT_FLOAT_EQ(sphere.radius, farthest);
+  EXPECT_LT(sphere.radius, 0.5f * s.bounds().diagonal() * 0.9f);
+  for (float az : {0.0f, 45.0f, 180.0f})
+    for (float el : {-60.0f, 0.0f, 60.0f}) {
+      const Camera c = make_orbit_camera(sphere, orbit(az, el), 200, 100);
+      for (const glm::vec3& p : m.positions) {
+        const glm::vec4 clip = c.proj * c.view * glm::vec4(p, 1.0f);
+        EXPECT_LE(std::abs(clip.x / clip.w), 1.0f);
+        EXPECT_LE(std::abs(clip.y / clip.w), 1.0f);
+      }
+    }
+  EXPECT_THROW(make_orbit_camera(Scene{}.framing_sphere(), orbit(0, 0), 8, 8), InputError);
+}
+
 }  // namespace
 }  // namespace sylva

@@ -211,6 +211,21 @@ TEST(Raster, DoubleSidedBackFaceNormalFacesCamera) {
       }
     }
   }
+  // Without vertex normals the flat normal faces the viewer from either side, ka = 1.
+  s.meshes[0].normals.clear();
+  r.upload(s);
+  for (float az : {0.0f, 180.0f}) {
+    g = r.render(front_camera(s, 64, false, az), ambient_only(1),
+                 request_of(Target::Normal | Target::Id | Target::Ka));
+    ASSERT_GT(cv::countNonZero(g.id), 64 * 64 / 4);
+    for (int y = 0; y < 64; ++y) {
+      for (int x = 0; x < 64; ++x) {
+        if (g.id.at<int32_t>(y, x) == 0) continue;
+        ASSERT_GT(g.normal.at<cv::Vec3f>(y, x)[2], 0.99f) << "az " << az;
+        ASSERT_EQ(g.ka.at<float>(y, x), 1.0f);
+      }
+    }
+  }
   // Single-sided: the back face is culled.
   s.materials[0].double_sided = false;
   r.upload(s);
@@ -289,6 +304,10 @@ TEST(Raster, FiniteAndDeterministic) {
     const RasterRequest req = request_of(kAllTargetsMask, IdKind::Cluster, ssaa);
     const GBuffer a = r.render(cam, Lighting::three_point(), req);
     const GBuffer b = r.render(cam, Lighting::three_point(), req);
+    double ka_lo = 0, ka_hi = 0;
+    cv::minMaxLoc(a.ka, &ka_lo, &ka_hi);
+    EXPECT_GE(ka_lo, 0.0);
+    EXPECT_LE(ka_hi, 1.0);  // interpolation must not push ka past 1
     for (Target t : kAllTargets) {
       const cv::Mat &ma = target_image(a, t), &mb = target_image(b, t);
       ASSERT_EQ(ma.size(), cv::Size(96, 80)) << target_name(t);

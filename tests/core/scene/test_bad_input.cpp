@@ -1,10 +1,12 @@
 // Hostile and broken scene files: each must end in an InputError naming the file, never a
-// crash, an abort or a hang. Small glTF files are built here from a JSON template.
+// crash, an abort or a hang. Small glTF files are built here from a JSON template (also used
+// for one test of well-formed files: node transforms and primitive modes).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
 #include "core/scene/gltf_write.h"
@@ -36,23 +38,30 @@ std::string base64(const std::string& in) {
   return out;
 }
 
-// One triangle: 3 float positions (36 bytes) then 3 uint16 indices (6 bytes, padded to 8).
-Json triangle(const float p[9], const uint16_t idx[3]) {
-  std::string bin(44, '\0');
-  std::memcpy(bin.data(), p, 36);
-  std::memcpy(bin.data() + 36, idx, 6);
+// A one-mesh glTF: float positions, then uint16 indices (4-byte aligned), in a data URI.
+Json mesh_gltf(const std::vector<float>& p, const std::vector<uint16_t>& idx) {
+  const size_t pos_bytes = p.size() * 4, idx_bytes = idx.size() * 2;
+  std::string bin(pos_bytes + (idx_bytes + 3) / 4 * 4, '\0');
+  std::memcpy(bin.data(), p.data(), pos_bytes);
+  std::memcpy(bin.data() + pos_bytes, idx.data(), idx_bytes);
   Json j = Json::parse(R"({
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0}],
     "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
-                    {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
-    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
-                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]
+    "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3"},
+                  {"bufferView": 1, "componentType": 5123, "type": "SCALAR"}]
   })");
+  j["accessors"][0]["count"] = p.size() / 3;
+  j["accessors"][1]["count"] = idx.size();
+  j["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}},
+                      {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", idx_bytes}}};
   j["buffers"] = {
-      {{"byteLength", 44}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
+      {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
   return j;
+}
+
+Json triangle(const float p[9], const uint16_t idx[3]) {
+  return mesh_gltf(std::vector<float>(p, p + 9), std::vector<uint16_t>(idx, idx + 3));
 }
 
 Json good_triangle() {
@@ -188,6 +197,46 @@ TEST(BadInput, MissingExternalTexture) {
   expect_input_error(write_gltf(j), "image 0");
 }
 
+TEST(BadInput, DeepJsonAndMissingBuffer) {
+  const std::string dir = test::temp_dir("deep");
+  test::write_file(dir + "/deep.gltf", R"({"asset": {"version": "2.0"}, "extras": )" +
+                                           std::string(100000, '[') + std::string(100000, ']') +
+                                           "}");
+  expect_input_error(dir + "/deep.gltf", "nested");
+  Json j = good_triangle();
+  j["buffers"][0]["uri"] = "gone.bin";
+  expect_input_error(write_gltf(j), "gone.bin");
+}
+
+// External textures next to the .gltf: 16-bit grey and 8-bit RGBA become RGBA8.
+TEST(BadInput, ExternalTexturesConverted) {
+  Json j = good_triangle();
+  j["materials"] =
+      Json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+  j["textures"] = Json::parse(R"([{"source": 0}])");
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  const std::string dir = test::temp_dir("ext");
+  cv::Mat grey16(2, 3, CV_16UC1, cv::Scalar(65535));
+  grey16.at<uint16_t>(0, 0) = 257 * 10;
+  ASSERT_TRUE(cv::imwrite(dir + "/grey16.png", grey16));
+  j["images"] = Json::parse(R"([{"uri": "grey16.png"}])");
+  test::write_file(dir + "/a.gltf", j.dump());
+  Scene s = load_scene(dir + "/a.gltf");
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_EQ(s.textures[0].width, 3);
+  EXPECT_EQ(s.textures[0].rgba[0], 10);
+  EXPECT_EQ(s.textures[0].rgba[3], 255);
+  EXPECT_EQ(s.textures[0].rgba[4], 255);
+  const cv::Mat bgra(2, 2, CV_8UC4, cv::Scalar(30, 60, 100, 7));
+  ASSERT_TRUE(cv::imwrite(dir + "/rgba.png", bgra));
+  j["images"] = Json::parse(R"([{"uri": "rgba.png"}])");
+  test::write_file(dir + "/b.gltf", j.dump());
+  Scene t = load_scene(dir + "/b.gltf");
+  EXPECT_EQ(t.textures[0].rgba[0], 100);  // BGRA on disk, RGBA in memory
+  EXPECT_EQ(t.textures[0].rgba[2], 30);
+  EXPECT_EQ(t.textures[0].rgba[3], 7);
+}
+
 TEST(BadInput, RequiredExtension) {
   Json j = good_triangle();
   j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
@@ -211,6 +260,38 @@ TEST(BadInput, DegenerateOnlyScene) {
   static const float p[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};  // collinear
   static const uint16_t idx[3] = {0, 1, 2};
   expect_input_error(write_gltf(triangle(p, idx)), "degenerate");
+}
+
+// Not hostile, but built with the same template: node transforms and primitive modes.
+TEST(GltfRead, NodeTransformsMirrorAndModes) {
+  Json j = good_triangle();
+  j["nodes"] = Json::parse(R"([{"children": [1], "translation": [10, 0, 0],
+                                "rotation": [0, 0, 0.70710678, 0.70710678]},
+                               {"mesh": 0, "scale": [1, 1, -1]}])");
+  Scene s = load_scene(write_gltf(j));
+  const Mesh& m = s.meshes[0];
+  EXPECT_NEAR(glm::length(m.positions[1] - glm::vec3(10, 1, 0)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(m.positions[2] - glm::vec3(9, 0, 0)), 0.0f, 1e-5f);
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 2, 1}));  // mirrored: winding flipped
+  EXPECT_NEAR(m.normals[0].z, -1.0f, 1e-5f);
+
+  const std::vector<float> square = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  Json strip = mesh_gltf(square, {0, 1, 2, 3});
+  strip["meshes"][0]["primitives"][0]["mode"] = 5;
+  Scene st = load_scene(write_gltf(strip));
+  EXPECT_EQ(st.meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));  // glTF §3.7.2.1
+  Json fan = mesh_gltf(square, {0, 1, 3, 2});
+  fan["meshes"][0]["primitives"][0]["mode"] = 6;
+  Scene f = load_scene(write_gltf(fan));
+  EXPECT_EQ(f.meshes[0].indices, (std::vector<uint32_t>{1, 3, 0, 3, 2, 0}));
+  Json points = good_triangle();
+  points["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}, {"mode", 0}});
+  Scene pt = load_scene(write_gltf(points));
+  EXPECT_EQ(pt.triangle_count(), 1u);
+  EXPECT_FALSE(pt.report.warnings.empty());
+  Json unindexed = good_triangle();
+  unindexed["meshes"][0]["primitives"][0].erase("indices");
+  EXPECT_EQ(load_scene(write_gltf(unindexed)).meshes[0].indices, (std::vector<uint32_t>{0, 1, 2}));
 }
 
 // Every single-byte corruption of a small GLB either loads or is an InputError.

@@ -55,6 +55,11 @@ TEST(LoadFern, TrianglesBoundsTextureRoles) {
   ASSERT_EQ(t.rgba.size(), size_t(2048) * 2048 * 4);
   // The asset's base colour is a 3-channel JPEG: alpha decodes as opaque everywhere.
   EXPECT_EQ(t.rgba[3], 255);
+  bool warned = false;
+  for (const std::string& w : s.report.warnings)
+    warned = warned ||
+             (w.find("fern_02") != std::string::npos && w.find("no alpha") != std::string::npos);
+  EXPECT_TRUE(warned);
 
   EXPECT_EQ(s.report.foliage_rule, "alpha MASK");
   EXPECT_NE(s.report.foliage_reason.find("fern_02"), std::string::npos);
