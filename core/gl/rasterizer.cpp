@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/gl/downsample.h"
+#include "core/gl/gpu_scene.h"
 #include "core/gl/shaders.h"
 
 namespace sylva {
@@ -45,121 +46,6 @@ static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka);
 float srgb_encode(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-struct GpuMesh {
-  GLuint vao = 0;
-  std::vector<GLuint> buffers;
-  GLsizei index_count = 0;
-  int material = -1;
-  uint32_t object_id = 0;
-  bool has_normals = false;
-};
-
-// libOSMesa exports GL 4.5 but not its direct-state-access entry points, so objects are
-// edited through bindings.
-template <typename T>
-GLuint make_buffer(GLenum target, const std::vector<T>& data) {
-  GLuint buffer = 0;
-  glGenBuffers(1, &buffer);
-  glBindBuffer(target, buffer);
-  glBufferStorage(target, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), 0);
-  return buffer;
-}
-
-void check_array(size_t size, size_t expected, const Mesh& mesh, const char* what) {
-  if (size != 0 && size != expected) {
-    throw InputError("mesh '" + mesh.name + "'", std::string(what) + " has " +
-                                                     std::to_string(size) + " entries, expected " +
-                                                     std::to_string(expected));
-  }
-}
-
-// A vertex belongs to one connected component, so the ids of any triangle using it are
-// the vertex's ids; the last triangle wins.
-GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
-  const size_t nv = mesh.positions.size();
-  const size_t nt = mesh.triangle_count();
-  check_array(mesh.normals.size(), nv, mesh, "normals");
-  check_array(mesh.uvs.size(), nv, mesh, "uvs");
-  check_array(mesh.colors.size(), nv, mesh, "colors");
-  check_array(mesh.primitive_ids.size(), nt, mesh, "primitive_ids");
-  check_array(mesh.cluster_ids.size(), nt, mesh, "cluster_ids");
-  check_array(mesh.roles.size(), nt, mesh, "roles");
-
-  std::vector<uint32_t> ids(nv * 2, 0);
-  std::vector<uint8_t> roles(nv, static_cast<uint8_t>(Role::Other));
-  for (size_t t = 0; t < nt; ++t) {
-    const uint32_t prim = mesh.primitive_ids.empty() ? 0 : mesh.primitive_ids[t];
-    const uint32_t cluster = mesh.cluster_ids.empty() ? 0 : mesh.cluster_ids[t];
-    const auto role = static_cast<uint8_t>(mesh.roles.empty() ? Role::Other : mesh.roles[t]);
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.indices[3 * t + k];
-      if (v >= nv) throw InputError("mesh '" + mesh.name + "'", "vertex index out of range");
-      ids[2 * v] = prim;
-      ids[2 * v + 1] = cluster;
-      roles[v] = role;
-    }
-  }
-
-  GpuMesh g;
-  g.material = mesh.material;
-  g.object_id = object_id;
-  g.index_count = static_cast<GLsizei>(nt * 3);
-  g.has_normals = !mesh.normals.empty();
-  glGenVertexArrays(1, &g.vao);
-  glBindVertexArray(g.vao);
-  auto attach = [&](GLuint buffer, GLuint location, GLint size, GLenum type, bool integer) {
-    g.buffers.push_back(buffer);
-    if (integer) {
-      glVertexAttribIPointer(location, size, type, 0, nullptr);
-    } else {
-      glVertexAttribPointer(location, size, type, GL_FALSE, 0, nullptr);
-    }
-    glEnableVertexAttribArray(location);
-  };
-  attach(make_buffer(GL_ARRAY_BUFFER, mesh.positions), kAttribPosition, 3, GL_FLOAT, false);
-  if (!mesh.normals.empty()) {
-    attach(make_buffer(GL_ARRAY_BUFFER, mesh.normals), kAttribNormal, 3, GL_FLOAT, false);
-  }
-  if (!mesh.uvs.empty()) {
-    attach(make_buffer(GL_ARRAY_BUFFER, mesh.uvs), kAttribUv, 2, GL_FLOAT, false);
-  }
-  if (!mesh.colors.empty()) {
-    attach(make_buffer(GL_ARRAY_BUFFER, mesh.colors), kAttribColor, 4, GL_FLOAT, false);
-  }
-  attach(make_buffer(GL_ARRAY_BUFFER, ids), kAttribIds, 2, GL_UNSIGNED_INT, true);
-  attach(make_buffer(GL_ARRAY_BUFFER, roles), kAttribRole, 1, GL_UNSIGNED_BYTE, true);
-  // The element-array binding is VAO state: bound while the VAO is.
-  g.buffers.push_back(make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices));
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  return g;
-}
-
-GLuint upload_texture(const Texture& tex) {
-  if (tex.width < 1 || tex.height < 1 ||
-      tex.rgba.size() != static_cast<size_t>(tex.width) * tex.height * 4) {
-    throw InputError("texture '" + tex.name + "'", "pixel data does not match its size");
-  }
-  int levels = 1;
-  while ((std::max(tex.width, tex.height) >> levels) > 0)
-    ++levels;
-  GLuint id = 0;
-  glGenTextures(1, &id);
-  glBindTexture(GL_TEXTURE_2D, id);
-  glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, tex.width, tex.height);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  // Rows go in top first: GL's t = 0 is then the image top, which is glTF's v = 0.
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
-                  tex.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  glBindTexture(GL_TEXTURE_2D, 0);
-  return id;
 }
 
 GLuint make_target_texture(GLenum internal_format, int width, int height) {
@@ -201,8 +87,7 @@ struct Rasterizer::Impl {
 
   void release_scene() {
     for (GpuMesh& m : meshes) {
-      glDeleteVertexArrays(1, &m.vao);
-      glDeleteBuffers(static_cast<GLsizei>(m.buffers.size()), m.buffers.data());
+      release_mesh(m);
     }
     meshes.clear();
     if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());

@@ -24,7 +24,10 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw InputError(path, "cannot write: is a directory");
   if (!fs::is_directory(dir, ec)) throw InputError(path, "cannot write: folder does not exist");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  std::string hidden = ".";  // built by appends: GCC 12 misreports `"." + string&&` (-Wrestrict)
+  hidden += target.filename().string();
+  hidden += ".tmpXXXXXX";
+  std::string tmpl = (dir / hidden).string();
   std::vector<char> name(tmpl.begin(), tmpl.end());
   name.push_back('\0');
   int fd = mkstemp(name.data());
