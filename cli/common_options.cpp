@@ -16,8 +16,8 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
                  "alpha-MASK materials), none, all, or a glob on material/mesh names")
       ->capture_default_str();
   cmd.add_option("--clusters", o.clusters,
-                 "Leaf clusters for k-means when the model has no hierarchy; 0 = auto, "
-                 "[0, 4096]")
+                 "Wanted leaf clusters (k-means k, or the target count for the hierarchy's "
+                 "division diameter); 0 = auto, about sqrt(leaves/2) capped at 64; [0, 4096]")
       ->capture_default_str();
   cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")->capture_default_str();
 }

@@ -16,6 +16,7 @@ namespace sylva {
 
 namespace {
 
+constexpr GLsizei kDrawChunkIndices = 3 * 32768;  // indices per draw call (32k triangles)
 constexpr int kSlots = 6;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
@@ -232,7 +233,13 @@ struct Rasterizer::Impl {
       glVertexAttrib4f(kAttribColor, 1.0f, 1.0f, 1.0f, 1.0f);
       glVertexAttrib3f(kAttribNormal, 0.0f, 0.0f, 1.0f);
       glBindVertexArray(m.vao);
-      glDrawElements(GL_TRIANGLES, m.index_count, GL_UNSIGNED_INT, nullptr);
+      // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
+      // vertex); chunks bound that buffer instead of letting it grow with the mesh.
+      for (GLsizei first = 0; first < m.index_count; first += kDrawChunkIndices) {
+        const GLsizei count = std::min(kDrawChunkIndices, m.index_count - first);
+        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(size_t(first) * sizeof(uint32_t)));
+      }
     }
     glBindVertexArray(0);
   }
@@ -273,7 +280,8 @@ struct Rasterizer::Impl {
       } else if (ssaa > 1) {
         m = downsample_covered(m, coverage, ssaa, t == Target::Normal);
       }
-      cv::flip(m, target_image(out, t), 0);  // GL's row 0 is the bottom
+      cv::flip(m, m, 0);  // GL's row 0 is the bottom; in place (cv::flip swaps row pairs)
+      target_image(out, t) = m;
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     return out;
