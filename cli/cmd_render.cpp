@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "cli/illumination_options.h"
 #include "core/error.h"
 #include "core/gl/raster_pass.h"
 #include "core/io/atomic_file.h"
@@ -72,6 +73,18 @@ void release_frame(std::unique_ptr<Frame>& frame) {
   malloc_trim(0);
 }
 
+// The raster pass, fed by the Luft preprocessing node when `mode` asks for it; the node is
+// always declared, so compile() is what culls it for the original normals.
+GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, const IlluminationOptions& io,
+                                uint64_t seed, NormalMode mode) {
+  const int shading =
+      add_foliage_illumination_pass(graph, illumination_setup(io, seed, frame.scene));
+  RasterSetup setup = frame.setup;
+  if (mode != NormalMode::Original) setup.shading = shading;
+  setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
+  return add_raster_pass(graph, setup);
+}
+
 void write_graph(const std::string& path, const RenderGraph& graph) {
   if (!path.empty()) write_file_atomic(path, graph.to_dot());
 }
@@ -101,6 +114,7 @@ Action add_render_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
+    IlluminationOptions illumination;
     std::string style = "standard";
     std::string out, graph;
   };
@@ -108,6 +122,7 @@ Action add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene in a style to an image");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
+  add_illumination_options(*cmd, o->illumination);
   cmd->add_option("--style", o->style, "Style name (see the README)")->capture_default_str();
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   cmd->add_option("-o,--output", o->out, "Output image (.png or .jpg)")->required();
@@ -117,7 +132,8 @@ Action add_render_command(CLI::App& app) {
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view);
     RenderGraph graph;
-    GBufferHandles gb = add_raster_pass(graph, frame->setup);
+    GBufferHandles gb =
+        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, style.normals);
     int out = style.build(graph, gb);
     graph.present(out);
     graph.compile();
@@ -140,6 +156,8 @@ Action add_buffers_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
+    IlluminationOptions illumination;
+    std::string normals = "original";
     std::string dir, list = "color,normal,depth,position,id,ka", graph;
   };
   auto o = std::make_shared<Opts>();
@@ -147,6 +165,11 @@ Action add_buffers_command(CLI::App& app) {
       "buffers", "Write the G-buffers (lossless TIFF/PNG), camera.json and 8-bit previews");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
+  add_illumination_options(*cmd, o->illumination);
+  cmd->add_option("--normals", o->normals,
+                  "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
+                  "Fig. 7c)")
+      ->capture_default_str();
   cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")->required();
   cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka")
       ->capture_default_str();
@@ -174,9 +197,10 @@ Action add_buffers_command(CLI::App& app) {
     if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
       throw InputError("--out-dir", "'" + o->dir + "': parent folder does not exist");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
+    const NormalMode mode = parse_normal_mode(o->normals, "--normals");
     auto frame = prepare_frame(o->scene, o->view);
     RenderGraph graph;
-    GBufferHandles gb = add_raster_pass(graph, frame->setup);
+    GBufferHandles gb = add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode);
     for (Target t : kAllTargets)
       if (has(wanted, t)) graph.present(gb.of(t));
     graph.compile();

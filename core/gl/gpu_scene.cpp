@@ -36,7 +36,6 @@ void check_array(size_t size, size_t expected, const Mesh& mesh, const char* wha
 GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
   const size_t nv = mesh.positions.size();
   const size_t nt = mesh.triangle_count();
-  check_array(mesh.normals.size(), nv, mesh, "normals");
   check_array(mesh.uvs.size(), nv, mesh, "uvs");
   check_array(mesh.colors.size(), nv, mesh, "colors");
   check_array(mesh.primitive_ids.size(), nt, mesh, "primitive_ids");
@@ -62,7 +61,7 @@ GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
   g.material = mesh.material;
   g.object_id = object_id;
   g.index_count = static_cast<GLsizei>(nt * 3);
-  g.has_normals = !mesh.normals.empty();
+  g.vertex_count = nv;
   glGenVertexArrays(1, &g.vao);
   glBindVertexArray(g.vao);
   auto attach = [&](GLuint buffer, GLuint location, GLint size, GLenum type, bool integer) {
@@ -75,9 +74,6 @@ GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
     glEnableVertexAttribArray(location);
   };
   attach(make_buffer(GL_ARRAY_BUFFER, mesh.positions), kAttribPosition, 3, GL_FLOAT, false);
-  if (!mesh.normals.empty()) {
-    attach(make_buffer(GL_ARRAY_BUFFER, mesh.normals), kAttribNormal, 3, GL_FLOAT, false);
-  }
   if (!mesh.uvs.empty()) {
     attach(make_buffer(GL_ARRAY_BUFFER, mesh.uvs), kAttribUv, 2, GL_FLOAT, false);
   }
@@ -90,7 +86,42 @@ GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
   g.buffers.push_back(make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  try {
+    replace_shading(g, mesh.normals, mesh.ka, mesh.name);
+  } catch (...) {
+    release_mesh(g);
+    throw;
+  }
   return g;
+}
+
+void replace_shading(GpuMesh& g, const std::vector<glm::vec3>& normals,
+                     const std::vector<float>& ka, const std::string& name) {
+  if (!normals.empty() && normals.size() != g.vertex_count)
+    throw InputError("mesh '" + name + "'", "normals has " + std::to_string(normals.size()) +
+                                                " entries, expected " +
+                                                std::to_string(g.vertex_count));
+  if (!ka.empty() && ka.size() != g.vertex_count)
+    throw InputError("mesh '" + name + "'", "ka has " + std::to_string(ka.size()) +
+                                                " entries, expected " +
+                                                std::to_string(g.vertex_count));
+  glBindVertexArray(g.vao);
+  auto set = [&](GLuint& buffer, GLuint location, GLint size, const auto& data) {
+    if (buffer) glDeleteBuffers(1, &buffer);
+    buffer = 0;
+    if (data.empty()) {
+      glDisableVertexAttribArray(location);  // reads the constant set before each draw
+      return;
+    }
+    buffer = make_buffer(GL_ARRAY_BUFFER, data);
+    glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(location);
+  };
+  set(g.normal_buffer, kAttribNormal, 3, normals);
+  set(g.ka_buffer, kAttribKa, 1, ka);
+  g.has_normals = !normals.empty();
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 GLuint upload_texture(const Texture& tex) {
@@ -121,6 +152,8 @@ GLuint upload_texture(const Texture& tex) {
 void release_mesh(GpuMesh& mesh) {
   glDeleteVertexArrays(1, &mesh.vao);
   glDeleteBuffers(static_cast<GLsizei>(mesh.buffers.size()), mesh.buffers.data());
+  for (GLuint* b : {&mesh.normal_buffer, &mesh.ka_buffer})
+    if (*b) glDeleteBuffers(1, b), *b = 0;
   mesh.vao = 0;
   mesh.buffers.clear();
 }

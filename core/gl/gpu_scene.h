@@ -7,6 +7,7 @@
 #include <GL/glcorearb.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/scene/scene.h"
@@ -20,12 +21,22 @@ struct GpuMesh {
   int material = -1;
   uint32_t object_id = 0;
   bool has_normals = false;
+  size_t vertex_count = 0;
+  GLuint normal_buffer = 0;  // replaceable (replace_shading); 0 = none
+  GLuint ka_buffer = 0;
+  bool oriented_foliage = false;  // foliage normals replaced by outward ones (Luft §3.3)
 };
 
 // Throws InputError when a per-vertex or per-triangle array has the wrong length or an
 // index is out of range. object_id is the mesh's 1-based id in object ID buffers.
 GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id);
 void release_mesh(GpuMesh& mesh);
+
+// Replaces a mesh's per-vertex normals (empty: none, flat shading) and ambient coefficients
+// (empty: decoded from the normal length). Throws InputError naming the mesh on a count
+// that does not match its vertices.
+void replace_shading(GpuMesh& mesh, const std::vector<glm::vec3>& normals,
+                     const std::vector<float>& ka, const std::string& name);
 
 // Throws InputError when the pixel data does not match the size.
 GLuint upload_texture(const Texture& tex);

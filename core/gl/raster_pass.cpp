@@ -1,5 +1,7 @@
 #include "core/gl/raster_pass.h"
 
+#include <memory>
+
 namespace sylva {
 
 int GBufferHandles::of(Target t) const {
@@ -49,8 +51,13 @@ GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
   h.position = graph.resource("position");
   h.id = graph.resource("id");
   h.ka = graph.resource("ka");
-  graph.add_pass("raster", {}, {h.color, h.normal, h.depth, h.position, h.id, h.ka},
+  std::vector<int> reads;
+  if (setup.shading >= 0) reads.push_back(setup.shading);
+  graph.add_pass("raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka},
                  [h, setup](PassContext& ctx) {
+                   if (setup.shading >= 0)
+                     setup.rasterizer->set_vertex_shading(
+                         *ctx.read<std::shared_ptr<const VertexShading>>(setup.shading));
                    RasterRequest request = setup.request;
                    request.targets = 0;
                    for (Target t : kAllTargets)

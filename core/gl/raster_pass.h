@@ -19,6 +19,9 @@ struct RasterSetup {
   Camera camera;
   Lighting lighting;
   RasterRequest request;  // request.targets is ignored: the graph decides
+  // A resource holding std::shared_ptr<const VertexShading> (the Luft preprocessing) the
+  // pass reads and applies before drawing; -1 = draw the uploaded normals.
+  int shading = -1;
 };
 
 GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup);

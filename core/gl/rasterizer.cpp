@@ -168,8 +168,10 @@ struct Rasterizer::Impl {
   }
 
   void set_frame_uniforms(const RasterProgram& p, const Camera& camera, const Lighting& lighting,
-                          IdKind id_kind) {
+                          const RasterRequest& request) {
+    const IdKind id_kind = request.id_kind;
     glUseProgram(p.id);
+    glUniform1i(p.scaled_normals, request.scaled_normals ? 1 : 0);
     glUniformMatrix4fv(p.view, 1, GL_FALSE, &camera.view[0][0]);
     glUniformMatrix4fv(p.proj, 1, GL_FALSE, &camera.proj[0][0]);
     glUniform1i(p.id_kind, id_kind == IdKind::Primitive ? 0 : id_kind == IdKind::Cluster ? 1 : 2);
@@ -200,7 +202,7 @@ struct Rasterizer::Impl {
   }
 
   void draw_meshes(TargetMask targets, const Camera& camera, const Lighting& lighting,
-                   IdKind id_kind) {
+                   const RasterRequest& request) {
     const Material fallback = default_material();
     std::array<const RasterProgram*, 2> variants{};  // by alpha test
     for (const GpuMesh& m : meshes) {
@@ -212,7 +214,7 @@ struct Rasterizer::Impl {
       const RasterProgram*& variant = variants[alpha_test ? 1 : 0];
       if (!variant) {
         variant = &program(targets, alpha_test);
-        set_frame_uniforms(*variant, camera, lighting, id_kind);
+        set_frame_uniforms(*variant, camera, lighting, request);
       }
       const RasterProgram& p = *variant;
       glUseProgram(p.id);
@@ -221,6 +223,7 @@ struct Rasterizer::Impl {
       glUniform1i(p.has_texture, has_texture ? 1 : 0);
       glUniform1f(p.alpha_cutoff, cutoff);
       glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
+      glUniform1i(p.oriented_foliage, m.oriented_foliage ? 1 : 0);
       glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
       if (has_texture) glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
       if (mat.double_sided) {
@@ -232,6 +235,7 @@ struct Rasterizer::Impl {
       glVertexAttrib2f(kAttribUv, 0.0f, 0.0f);
       glVertexAttrib4f(kAttribColor, 1.0f, 1.0f, 1.0f, 1.0f);
       glVertexAttrib3f(kAttribNormal, 0.0f, 0.0f, 1.0f);
+      glVertexAttrib1f(kAttribKa, -1.0f);
       glBindVertexArray(m.vao);
       // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
       // vertex); chunks bound that buffer instead of letting it grow with the mesh.
@@ -321,6 +325,19 @@ void Rasterizer::upload(const Scene& scene) {
   }
 }
 
+void Rasterizer::set_vertex_shading(const VertexShading& shading) {
+  Impl& s = *m_impl;
+  s.context.make_current();
+  for (GpuMesh& m : s.meshes) {
+    const size_t i = m.object_id - 1;  // scene mesh index
+    if (i >= shading.normals.size()) continue;
+    static const std::vector<float> kNone;
+    replace_shading(m, shading.normals[i], i < shading.ka.size() ? shading.ka[i] : kNone,
+                    "mesh " + std::to_string(i));
+    m.oriented_foliage = shading.oriented_foliage;
+  }
+}
+
 GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
                            const RasterRequest& request) {
   Impl& s = *m_impl;
@@ -362,7 +379,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
-  s.draw_meshes(request.targets, camera, lighting, request.id_kind);
+  s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   return s.read_back(request.targets, request.ssaa);
 }

@@ -24,6 +24,18 @@ struct RasterRequest {
   IdKind id_kind = IdKind::Primitive;
   int ssaa = 1;                      // supersampling factor per axis, [1, 4]
   glm::vec4 background{1, 1, 1, 0};  // colour target clear, linear RGBA
+  bool scaled_normals = false;       // normal target keeps |N| = ka (Luft Fig. 7c), not unit
+};
+
+// Replacement per-vertex shading inputs, per scene mesh (scene order): normals (world
+// space; their length may carry ka) and optional separate ka (empty = from |normal|).
+// What the Luft preprocessing produces.
+struct VertexShading {
+  std::vector<std::vector<glm::vec3>> normals;
+  std::vector<std::vector<float>> ka;
+  // Foliage normals already face outward (realigned): double-sided leaves do not flip them
+  // for back faces, or half the crown would be lit from inside.
+  bool oriented_foliage = false;
 };
 
 class Rasterizer {
@@ -36,6 +48,8 @@ class Rasterizer {
 
   // Uploads geometry, ids and textures. Call again when the scene changes.
   void upload(const Scene& scene);
+  // Replaces the uploaded normals/ka of the meshes `shading` covers; the rest keep theirs.
+  void set_vertex_shading(const VertexShading& shading);
   GBuffer render(const Camera& camera, const Lighting& lighting, const RasterRequest& request);
 
   // Targets allocated by the most recent render (for tests of the render graph's culling).

@@ -15,6 +15,7 @@ layout(location = 2) in vec2 a_uv;
 layout(location = 3) in vec4 a_color;
 layout(location = 4) in uvec2 a_ids;
 layout(location = 5) in uint a_role;
+layout(location = 6) in float a_ka;  // a separate ambient coefficient, or -1: use |a_normal|
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
@@ -32,8 +33,9 @@ flat out uint v_role;
 void main() {
   vec4 view_pos = u_view * vec4(a_position, 1.0);
   // Luft et al. Sec. 3.2: ka is stored as the normal's length; unit normals mean ka = 1.
+  // A separate ka attribute, when the mesh has one, takes precedence.
   float len = length(a_normal);
-  v_ka = clamp(len, 0.0, 1.0);
+  v_ka = clamp(a_ka >= 0.0 ? a_ka : len, 0.0, 1.0);
   // The view matrix is rigid, so its upper 3x3 rotates normals.
   v_normal = mat3(u_view) * (len > 1e-20 ? a_normal / len : vec3(0.0));
   v_view_pos = view_pos.xyz;
@@ -59,8 +61,10 @@ uniform bool u_has_texture;
 uniform sampler2D u_texture;    // GL_SRGB8_ALPHA8: sampled values are linear
 uniform float u_alpha_cutoff;   // ALPHA_TEST variant: MASK (and BLEND, drawn as MASK)
 uniform bool u_double_sided;
+uniform bool u_oriented_foliage;  // realigned foliage normals face outward: never flip them
 uniform bool u_has_normals;     // false: flat normals from screen-space derivatives
 uniform bool u_ortho;
+uniform bool u_scaled_normals;  // Luft Fig. 7c: the normal target keeps |N| = ka
 
 uniform float u_ambient;
 uniform int u_light_count;
@@ -99,7 +103,8 @@ vec3 surface_normal() {
   }
   float len = length(v_normal);
   vec3 n = len > 1e-12 ? v_normal / len : vec3(0.0, 0.0, 1.0);
-  return u_double_sided && !gl_FrontFacing ? -n : n;
+  const bool keep = u_oriented_foliage && v_role == 0u;  // Role::Foliage
+  return u_double_sided && !gl_FrontFacing && !keep ? -n : n;
 }
 
 void main() {
@@ -140,7 +145,7 @@ void main() {
   o_color = vec4(srgb_encode(base.rgb * diffuse + specular), 1.0);
 #endif
 #ifdef OUT_NORMAL
-  o_normal = vec4(n, 0.0);
+  o_normal = vec4(u_scaled_normals ? n * clamp(v_ka, 0.0, 1.0) : n, 0.0);
 #endif
 #ifdef OUT_DEPTH
   o_depth = -v_view_pos.z;
@@ -252,8 +257,10 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.texture = loc("u_texture");
   p.alpha_cutoff = loc("u_alpha_cutoff");
   p.double_sided = loc("u_double_sided");
+  p.oriented_foliage = loc("u_oriented_foliage");
   p.has_normals = loc("u_has_normals");
   p.ortho = loc("u_ortho");
+  p.scaled_normals = loc("u_scaled_normals");
   p.ambient = loc("u_ambient");
   p.light_count = loc("u_light_count");
   p.light_vector = loc("u_light_vector");

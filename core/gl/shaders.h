@@ -22,6 +22,7 @@ inline constexpr GLuint kAttribUv = 2;        // vec2, glTF convention (v down)
 inline constexpr GLuint kAttribColor = 3;     // vec4, linear RGBA vertex colour
 inline constexpr GLuint kAttribIds = 4;       // uvec2 (primitive id, cluster id)
 inline constexpr GLuint kAttribRole = 5;      // uint (Role)
+inline constexpr GLuint kAttribKa = 6;        // float ambient coefficient; < 0: use |normal|
 
 // The full fragment/vertex source for a target mask (with "#version 450 core" and defines).
 std::string raster_vertex_source();
@@ -38,7 +39,8 @@ GLuint build_raster_program(TargetMask targets, bool alpha_test);
 struct RasterProgram {
   GLuint id = 0;
   GLint view, proj, id_kind, object_id, base_color, has_texture, texture, alpha_cutoff,
-      double_sided, has_normals, ortho, ambient, light_count, light_vector, light_color, light_spec;
+      double_sided, has_normals, ortho, ambient, light_count, light_vector, light_color, light_spec,
+      scaled_normals, oriented_foliage;
 };
 RasterProgram make_raster_program(TargetMask targets, bool alpha_test);
 

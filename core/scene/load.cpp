@@ -53,6 +53,11 @@ void validate(const Scene& scene, const std::string& where) {
       throw InputError(where, mesh_where(mesh, m) + ": texture coordinate count != vertex count");
     if (!mesh.colors.empty() && mesh.colors.size() != nv)
       throw InputError(where, mesh_where(mesh, m) + ": colour count != vertex count");
+    if (!mesh.ka.empty() && mesh.ka.size() != nv)
+      throw InputError(where, mesh_where(mesh, m) + ": ambient coefficient count != vertex count");
+    for (float ka : mesh.ka)
+      if (!(ka >= 0.0f && ka <= 1.0f))
+        throw InputError(where, mesh_where(mesh, m) + ": ambient coefficient outside [0, 1]");
   }
 }
 

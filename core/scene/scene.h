@@ -45,6 +45,8 @@ struct Mesh {
                                      // coefficient is encoded in the length (Luft et al.)
   std::vector<glm::vec2> uvs;        // optional, glTF convention (v down)
   std::vector<glm::vec4> colors;     // optional linear RGBA vertex colours
+  std::vector<float> ka;             // optional ambient coefficient in [0, 1] per vertex; when
+                                     // present the renderer uses it, not the normal length
   std::vector<uint32_t> indices;     // 3 per triangle
 
   // Per triangle. Ids are 1-based (0 means background in ID buffers).

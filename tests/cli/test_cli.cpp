@@ -115,6 +115,62 @@ TEST(Cli, ParameterExtremesRender) {
   }
 }
 
+// The Luft options: bad values name the option and write nothing; the ends of each range
+// render; a tau above every density is a clear error naming rho, tau and the density range.
+TEST(Cli, FoliageIlluminationOptions) {
+  std::string dir = temp_dir("luft");
+  std::string out = dir + "/x.png";
+  std::string base = "render " + small_tree() + " --style expressive --size 32 -o " + out + " ";
+  for (const char* bad : {"--rho 0",           "--rho -1",         "--rho 0%",
+                          "--rho banana",      "--tau -1",         "--tau nan",
+                          "--fraction 0",      "--fraction 1.01",  "--grid 1",
+                          "--grid 1025",       "--blend -0.1",     "--blend 1.1",
+                          "--ka-min 1.01",     "--ka-min -0.01",   "--d-min 0",
+                          "--exponent 0",      "--exponent 100.5", "--normal-source sky",
+                          "--ka-encoding rgb", "--smooth 101",     "--decimate 0"}) {
+    const std::string option = std::string(bad).substr(0, std::string(bad).find(' '));
+    expect_input_error(base + bad, option);
+  }
+  expect_input_error(base + "--tau 1e9", "--tau");  // no surface: rho and range named
+  RunResult r = run_sylva(base + "--tau 1e9");
+  EXPECT_NE(r.output.find("rho"), std::string::npos) << r.output;
+  EXPECT_FALSE(file_exists(out));
+  expect_input_error(base + "--rho 1% --grid 2", "--grid");  // nodes miss every kernel
+  EXPECT_FALSE(file_exists(out));
+  for (const char* ok :
+       {"--rho 2% --grid 96", "--rho 500% --grid 2 --fraction 0.001", "--tau 0 --blend 0",
+        "--ka-min 0 --exponent 0.01 --d-min 1e-6", "--ka-min 1 --exponent 100",
+        "--normal-source gradient --ka-encoding attribute --per-triangle",
+        "--grid 256 --smooth 3 --decimate 0.5"}) {
+    RunResult rr = run_sylva(base + ok);
+    EXPECT_EQ(rr.status, 0) << ok << "\n" << rr.output;
+    EXPECT_FALSE(cv::imread(out, cv::IMREAD_UNCHANGED).empty()) << ok;
+  }
+  // Buffers: realigned-scaled normals carry ka in their length; realigned ones are unit.
+  for (const char* mode : {"realigned", "realigned-scaled"}) {
+    const std::string bdir = dir + "/" + mode;
+    RunResult b =
+        run_sylva("buffers " + small_tree() + " --size 64 --buffers normal,ka --normals " + mode +
+                  " --out-dir " + bdir + " --surface-out " + dir + "/s.glb");
+    ASSERT_EQ(b.status, 0) << b.output;
+    const cv::Mat n = cv::imread(bdir + "/normal.tiff", cv::IMREAD_UNCHANGED);
+    const cv::Mat ka = cv::imread(bdir + "/ka.tiff", cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(n.empty());
+    double worst = 0.0;
+    for (int y = 0; y < n.rows; ++y)
+      for (int x = 0; x < n.cols; ++x) {
+        if (ka.at<float>(y, x) <= 0.0f) continue;
+        const double len = cv::norm(n.at<cv::Vec3f>(y, x));
+        const double want = std::string(mode) == "realigned" ? 1.0 : ka.at<float>(y, x);
+        worst = std::max(worst, std::abs(len - want));
+      }
+    EXPECT_LT(worst, 2e-3) << mode;
+    EXPECT_TRUE(file_exists(dir + "/s.glb"));
+  }
+  expect_input_error("buffers " + small_tree() + " --normals bent --out-dir " + dir + "/b",
+                     "--normals");
+}
+
 TEST(Cli, BadScenesExitTwoAndWriteNothing) {
   std::string dir = temp_dir("bad-scenes");
   std::string out = dir + "/out.png";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "npr/leaf_clusters.h"
 #include "samples/plants.h"
 #include "styles/style.h"
 
@@ -51,6 +52,36 @@ TEST(Styles, PresentingIdsAllocatesThem) {
   graph.present(gb.id);
   graph.execute();
   EXPECT_EQ(s.raster->last_allocated_targets(), static_cast<TargetMask>(Target::Id));
+}
+
+// The Luft preprocessing is a scene-level node: declared for every style, run only for the
+// ones whose raster pass reads it. `expressive` draws with the density ka (below 1 inside
+// the crown) where `standard` has ka = 1 everywhere.
+TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
+  StyleRig s;
+  assign_clusters(s.scene, {});
+  double mean_ka[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const StyleInfo& style = find_style(k == 0 ? "standard" : "expressive");
+    RenderGraph graph;
+    IlluminationSetup is;
+    is.scene = &s.scene;
+    const int shading = add_foliage_illumination_pass(graph, is);
+    RasterSetup rs = s.rs;
+    if (style.normals != NormalMode::Original) rs.shading = shading;
+    const GBufferHandles gb = add_raster_pass(graph, rs);
+    graph.present(style.build(graph, gb));
+    graph.compile();
+    EXPECT_EQ(graph.pass_live("foliage-illumination"), k == 1) << style.name;
+    graph.present(gb.ka);  // a second compile with the ka target added, for the check
+    graph.compile();
+    graph.execute();
+    const cv::Mat& ka = graph.get<cv::Mat>(gb.ka);
+    mean_ka[k] = cv::mean(ka, ka > 0)[0];
+  }
+  EXPECT_NEAR(mean_ka[0], 1.0, 1e-6);
+  EXPECT_LT(mean_ka[1], 0.9);
+  EXPECT_GT(mean_ka[1], 0.2 - 1e-6);  // ka_min
 }
 
 TEST(Styles, UnknownStyleIsAnInputError) {

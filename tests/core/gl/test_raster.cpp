@@ -145,6 +145,37 @@ TEST(Raster, KaFromNormalLengthDarkensAmbient) {
   EXPECT_NEAR(linear[1] / linear[0], 0.5f, 0.02f);
 }
 
+// A separate ka attribute wins over the normal length; the scaled normal target keeps
+// |N| = ka (Luft Fig. 7c); set_vertex_shading replaces both after upload.
+TEST(Raster, KaAttributeScaledNormalsAndReplacedShading) {
+  Material white;
+  white.base_color = glm::vec4(1.0f);
+  Mesh quad = make_quad(1.0f, 0.0f, 0.5f);       // normal length 0.5 ...
+  quad.ka.assign(quad.positions.size(), 0.25f);  // ... but the attribute says 0.25
+  const Scene s = scene_of({quad}, white);
+  Rasterizer r(gl());
+  r.upload(s);
+  RasterRequest req = request_of(Target::Color | Target::Ka | Target::Normal);
+  GBuffer g = r.render(front_camera(s, 64), ambient_only(0.8f), req);
+  EXPECT_NEAR(g.ka.at<float>(32, 32), 0.25f, 1e-6f);
+  EXPECT_NEAR(cv::norm(g.normal.at<cv::Vec3f>(32, 32)), 1.0, 1e-3);
+  req.scaled_normals = true;
+  g = r.render(front_camera(s, 64), ambient_only(0.8f), req);
+  EXPECT_NEAR(g.normal.at<cv::Vec3f>(32, 32)[2], 0.25f, 1e-3f);
+
+  VertexShading shading;  // tilt the normals toward +x and drop the attribute
+  const glm::vec3 tilted = glm::normalize(glm::vec3(1, 0, 1)) * 0.75f;
+  shading.normals = {std::vector<glm::vec3>(quad.positions.size(), tilted)};
+  r.set_vertex_shading(shading);
+  g = r.render(front_camera(s, 64), ambient_only(0.8f), req);
+  EXPECT_NEAR(g.ka.at<float>(32, 32), 0.75f, 1e-5f);
+  const cv::Vec3f n = g.normal.at<cv::Vec3f>(32, 32);
+  EXPECT_NEAR(n[0], tilted.x, 1e-3f);
+  EXPECT_NEAR(n[2], tilted.z, 1e-3f);
+  shading.normals[0].pop_back();
+  EXPECT_THROW(r.set_vertex_shading(shading), InputError);
+}
+
 // A 256^2 texture whose alpha is a disc of radius 0.4 (uv units), opaque square otherwise.
 Scene masked_quad_scene(AlphaMode mode) {
   Scene s = scene_of({make_quad(1.0f, 0.0f)});

@@ -1,0 +1,397 @@
+#include "npr/density_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+
+namespace sylva {
+namespace {
+
+// Most cells per axis of the hash grid: with a rho far below the generator extent the cell
+// grows beyond rho (a query then touches at most 2 cells per axis), so cell coordinates and
+// their 64-bit key never overflow.
+constexpr double kMaxCellsPerAxis = double(1 << 20);
+constexpr uint32_t kEmptySlot = std::numeric_limits<uint32_t>::max();
+
+// floor(x) clamped to [0, n - 1]; NaN goes to 0.
+int64_t clamp_cell(double x, int64_t n) {
+  const double f = std::floor(x);
+  if (!(f > 0.0)) return 0;
+  if (f >= double(n - 1)) return n - 1;
+  return int64_t(f);
+}
+
+uint64_t mix(uint64_t k) {
+  k ^= k >> 33;
+  k *= 0xff51afd7ed558ccdULL;
+  k ^= k >> 33;
+  return k;
+}
+
+std::string number(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
+}
+
+}  // namespace
+
+// Uniform grid of cell size >= rho over the generators: points stored sorted by cell
+// (generator order within a cell); cells addressed densely when the grid is small, through
+// an open-addressing table of the occupied cells otherwise.
+struct DensityField::Index {
+  glm::dvec3 origin{0.0};
+  double cell = 1.0;
+  int64_t n[3] = {1, 1, 1};
+  bool dense = true;
+  Bounds bounds;
+  std::vector<glm::vec3> points;    // in cell order
+  std::vector<uint32_t> start;      // dense: first point of each cell, cells + 1 entries
+  std::vector<uint64_t> keys;       // sparse: occupied cell keys, ascending
+  std::vector<uint32_t> key_start;  // sparse: first point of keys[i], keys + 1 entries
+  std::vector<uint32_t> table;      // sparse: index into keys or kEmptySlot
+  uint64_t mask = 0;
+
+  uint64_t key(int64_t x, int64_t y, int64_t z) const {
+    return uint64_t(x) + uint64_t(n[0]) * (uint64_t(y) + uint64_t(n[1]) * uint64_t(z));
+  }
+  int64_t coord(double p, int axis) const { return clamp_cell((p - origin[axis]) / cell, n[axis]); }
+
+  // Points of the cells x0..x1 of row (y, z), as one or more [begin, end) ranges.
+  template <class Fn>
+  void for_row(int64_t x0, int64_t x1, int64_t y, int64_t z, Fn&& fn) const {
+    if (dense) {
+      const uint64_t k = key(x0, y, z);
+      fn(start[k], start[k + uint64_t(x1 - x0) + 1]);
+      return;
+    }
+    for (int64_t x = x0; x <= x1; ++x) {
+      const uint64_t k = key(x, y, z);
+      for (uint64_t s = mix(k) & mask;; s = (s + 1) & mask) {
+        const uint32_t i = table[s];
+        if (i == kEmptySlot) break;
+        if (keys[i] == k) {
+          fn(key_start[i], key_start[i + 1]);
+          break;
+        }
+      }
+    }
+  }
+
+  // Every point range of the cells within `radius` of q, in a fixed order (cells z, y, x).
+  template <class Fn>
+  void for_near(const glm::dvec3& q, double radius, Fn&& fn) const {
+    if (points.empty()) return;
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      const double l = (q[a] - radius - origin[a]) / cell;
+      const double h = (q[a] + radius - origin[a]) / cell;
+      // Entirely outside the grid (or NaN): nothing within radius.
+      if (!(h >= 0.0) || !(l < double(n[a]))) return;
+      lo[a] = clamp_cell(l, n[a]);
+      hi[a] = clamp_cell(h, n[a]);
+    }
+    for (int64_t z = lo[2]; z <= hi[2]; ++z)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for_row(lo[0], hi[0], y, z, fn);
+  }
+};
+
+DensityField::DensityField(std::vector<glm::vec3> generators, float rho, float tau)
+    : m_generators(std::move(generators)), m_rho(rho), m_tau(tau) {
+  if (!std::isfinite(rho) || !(rho > 0.0f))
+    throw InputError("rho", "must be finite and > 0 (scene units), got " + number(rho));
+  if (!std::isfinite(tau) || !(tau >= 0.0f))
+    throw InputError("tau", "must be finite and >= 0, got " + number(tau));
+  SYLVA_CHECK(m_generators.size() < size_t(kEmptySlot), "too many generators");
+
+  m_index = std::make_unique<Index>();
+  Index& ix = *m_index;
+  for (const glm::vec3& p : m_generators) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError("generators", "positions must be finite");
+    ix.bounds.extend(p);
+  }
+  const size_t count = m_generators.size();
+  if (count == 0) return;
+
+  const glm::dvec3 extent = glm::dvec3(ix.bounds.max) - glm::dvec3(ix.bounds.min);
+  ix.origin = glm::dvec3(ix.bounds.min);
+  ix.cell = std::max(double(rho), std::max({extent.x, extent.y, extent.z}) / kMaxCellsPerAxis);
+  for (int a = 0; a < 3; ++a)
+    ix.n[a] = std::min(int64_t(std::floor(extent[a] / ix.cell)) + 1, int64_t(kMaxCellsPerAxis) + 1);
+  const uint64_t cells = uint64_t(ix.n[0]) * uint64_t(ix.n[1]) * uint64_t(ix.n[2]);
+
+  std::vector<uint64_t> key(count);
+#pragma omp parallel for schedule(static)
+  for (int64_t i = 0; i < int64_t(count); ++i) {
+    const glm::dvec3 p = m_generators[size_t(i)];
+    key[size_t(i)] = ix.key(ix.coord(p.x, 0), ix.coord(p.y, 1), ix.coord(p.z, 2));
+  }
+
+  ix.points.resize(count);
+  ix.dense = cells <= 4 * uint64_t(count) + (1u << 16);
+  if (ix.dense) {
+    // Counting sort by cell: stable, so generator order within a cell.
+    ix.start.assign(size_t(cells) + 1, 0);
+    for (uint64_t k : key)
+      ++ix.start[size_t(k) + 1];
+    for (size_t c = 0; c < size_t(cells); ++c)
+      ix.start[c + 1] += ix.start[c];
+    std::vector<uint32_t> fill(ix.start.begin(), ix.start.end() - 1);
+    for (size_t i = 0; i < count; ++i)
+      ix.points[fill[size_t(key[i])]++] = m_generators[i];
+    return;
+  }
+
+  std::vector<std::pair<uint64_t, uint32_t>> order(count);
+  for (size_t i = 0; i < count; ++i)
+    order[i] = {key[i], uint32_t(i)};
+  std::sort(order.begin(), order.end());
+  for (size_t i = 0; i < count; ++i) {
+    ix.points[i] = m_generators[order[i].second];
+    if (i == 0 || order[i].first != order[i - 1].first) {
+      ix.keys.push_back(order[i].first);
+      ix.key_start.push_back(uint32_t(i));
+    }
+  }
+  ix.key_start.push_back(uint32_t(count));
+  size_t slots = 16;
+  while (slots < 2 * ix.keys.size())
+    slots *= 2;
+  ix.mask = slots - 1;
+  ix.table.assign(slots, kEmptySlot);
+  for (size_t i = 0; i < ix.keys.size(); ++i) {
+    uint64_t s = mix(ix.keys[i]) & ix.mask;
+    while (ix.table[s] != kEmptySlot)
+      s = (s + 1) & ix.mask;
+    ix.table[s] = uint32_t(i);
+  }
+}
+
+DensityField::~DensityField() = default;
+DensityField::DensityField(DensityField&&) noexcept = default;
+DensityField& DensityField::operator=(DensityField&&) noexcept = default;
+
+Bounds DensityField::generator_bounds() const {
+  return m_index ? m_index->bounds : Bounds{};
+}
+
+float DensityField::value(const glm::vec3& q) const {
+  SYLVA_CHECK(m_index, "DensityField used after move");
+  const glm::dvec3 qd(q);
+  const double inv_r2 = 1.0 / (double(m_rho) * double(m_rho));
+  double sum = 0.0;
+  m_index->for_near(qd, m_rho, [&](uint32_t b, uint32_t e) {
+    for (uint32_t i = b; i < e; ++i) {
+      const glm::dvec3 d = qd - glm::dvec3(m_index->points[i]);
+      const double s = glm::dot(d, d) * inv_r2;
+      if (s < 1.0) sum += (1.0 - s) * (1.0 - s);  // Luft et al. Eq. 2
+    }
+  });
+  return float(sum - double(m_tau));  // Luft et al. Eq. 3
+}
+
+float DensityField::value_and_gradient(const glm::vec3& q, glm::vec3& gradient) const {
+  SYLVA_CHECK(m_index, "DensityField used after move");
+  const glm::dvec3 qd(q);
+  const double inv_r2 = 1.0 / (double(m_rho) * double(m_rho));
+  double sum = 0.0;
+  glm::dvec3 grad(0.0);
+  m_index->for_near(qd, m_rho, [&](uint32_t b, uint32_t e) {
+    for (uint32_t i = b; i < e; ++i) {
+      const glm::dvec3 d = qd - glm::dvec3(m_index->points[i]);
+      const double s = glm::dot(d, d) * inv_r2;
+      if (s < 1.0) {
+        sum += (1.0 - s) * (1.0 - s);             // Luft et al. Eq. 2
+        grad += (-4.0 * (1.0 - s) * inv_r2) * d;  // d/dq of Eq. 2
+      }
+    }
+  });
+  gradient = glm::vec3(grad);
+  return float(sum - double(m_tau));
+}
+
+namespace {
+
+// Nodes a generator may reach along each axis (one node of slack for rounding; the kernel
+// itself decides), empty when lo > hi.
+struct NodeBox {
+  int lo[3] = {1, 1, 1};
+  int hi[3] = {0, 0, 0};
+};
+
+// [ceil(lo), floor(hi)] clamped to [first, last]; empty (a > e) when they do not meet.
+void node_span(double lo, double hi, int first, int last, int& a, int& e) {
+  lo = std::max(double(first), lo);
+  hi = std::min(double(last), hi);
+  if (!(lo <= hi)) {
+    a = 1;
+    e = 0;
+    return;
+  }
+  // Both ends are >= 0 here, where truncation is floor (and SSE2 has no fast ceil).
+  a = int(lo);
+  a += double(a) < lo ? 1 : 0;
+  e = int(hi);
+}
+
+// Adds one generator's kernel (Luft et al. Eq. 2) to `planes` consecutive planes starting at
+// `dst`: s = u[x] + v[y] + w[z] (squared distances over rho^2 per axis), D = (1 - s)^2 where
+// s < 1. (gx, gy) is the generator in node units. Each plane visits the square around the
+// ball's cross-section without branches (max(1 - s, 0) zeroes the corners): cheaper than
+// exact row spans, whose set-up and mispredictions cost more than the nodes they save.
+// Compiled for AVX2 too (no FMA, so every version gives the same bytes).
+__attribute__((target_clones("avx2", "default"))) void splat_planes(
+    double* dst, size_t plane, int nx, int planes, int yl, int yh, int xl, int xh, const double* u,
+    const double* v, const double* w, double gx, double gy, double rho_nodes) {
+  for (int z = 0; z < planes; ++z) {
+    const double cz = 1.0 - w[z];
+    if (!(cz > 0.0)) continue;
+    // The cross-section's radius in node units (a node rounding moves across the rim adds
+    // (1 - s)^2 ~ 0).
+    const double half = rho_nodes * std::sqrt(cz);
+    int xa, xe, ya, ye;
+    node_span(gx - half, gx + half, xl, xh, xa, xe);
+    node_span(gy - half, gy + half, yl, yh, ya, ye);
+    double* dst_plane = dst + size_t(z) * plane;
+    for (int y = ya; y <= ye; ++y) {
+      const double c = cz - v[y];
+      double* row = dst_plane + size_t(y) * size_t(nx);
+#pragma omp simd
+      for (int x = xa; x <= xe; ++x) {
+        const double d = c - u[x];
+        const double t = 0.5 * (d + std::abs(d));  // max(d, 0), branch-free
+        row[x] += t * t;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void DensityField::fill_grid(ScalarGrid& grid) const {
+  SYLVA_CHECK(m_index, "DensityField used after move");
+  SYLVA_CHECK(grid.dims.x >= 1 && grid.dims.y >= 1 && grid.dims.z >= 1, "grid dims not set");
+  SYLVA_CHECK(std::isfinite(grid.spacing) && grid.spacing > 0.0f, "grid spacing must be > 0");
+  const int nx = grid.dims.x, ny = grid.dims.y, nz = grid.dims.z;
+  const int dims[3] = {nx, ny, nz};
+  const size_t plane = size_t(nx) * size_t(ny);
+  grid.values.resize(plane * size_t(nz));
+
+  // Node coordinates exactly as ScalarGrid::position() computes them, so a node's value
+  // matches value(grid.position(...)).
+  std::vector<double> coords[3];
+  for (int a = 0; a < 3; ++a) {
+    coords[a].resize(size_t(dims[a]));
+    for (int i = 0; i < dims[a]; ++i) {
+      glm::ivec3 n(0);
+      n[a] = i;
+      coords[a][size_t(i)] = grid.position(n.x, n.y, n.z)[a];
+    }
+    SYLVA_CHECK(std::isfinite(coords[a].front()) && std::isfinite(coords[a].back()),
+                "grid nodes must be finite");
+  }
+  const std::vector<double>&xs = coords[0], &ys = coords[1], &zs = coords[2];
+
+  const double rho = m_rho;
+  const double inv_r2 = 1.0 / (rho * rho);
+  const double h = grid.spacing;
+  const double rho_nodes = rho / h;
+  const double tau = m_tau;
+  const std::vector<glm::vec3>& gens = m_generators;
+  const int64_t count = int64_t(gens.size());
+
+  std::vector<NodeBox> boxes(static_cast<size_t>(count));
+#pragma omp parallel for schedule(static)
+  for (int64_t i = 0; i < count; ++i) {
+    NodeBox box;
+    bool near = true;
+    for (int a = 0; a < 3; ++a) {
+      const double g = (double(gens[size_t(i)][a]) - coords[a][0]) / h;
+      const double lo = g - rho_nodes - 1.0, hi = g + rho_nodes + 1.0;
+      near = hi >= 0.0 && lo <= double(dims[a] - 1);
+      if (!near) break;
+      box.lo[a] = int(std::ceil(std::max(lo, 0.0)));
+      box.hi[a] = int(std::floor(std::min(hi, double(dims[a] - 1))));
+    }
+    boxes[size_t(i)] = near ? box : NodeBox{};
+  }
+
+  // Slabs of whole z planes, each filled by one thread. Every node sums its generators in
+  // generator order whatever the slab size or thread count, so the bytes never depend on them.
+  const int slab = std::clamp(int(std::min<size_t>(8, (size_t(1) << 20) / plane)), 1,
+                              std::max(1, std::min(8, nz / 16)));
+  const int slabs = (nz + slab - 1) / slab;
+  auto touches = [&](const NodeBox& b) {
+    return b.lo[0] <= b.hi[0] && b.lo[1] <= b.hi[1] && b.lo[2] <= b.hi[2];
+  };
+  // Generators of each slab, in generator order (counting sort).
+  std::vector<size_t> slab_start(size_t(slabs) + 1, 0);
+  for (const NodeBox& b : boxes)
+    if (touches(b))
+      for (int s = b.lo[2] / slab; s <= b.hi[2] / slab; ++s)
+        ++slab_start[size_t(s) + 1];
+  for (int s = 0; s < slabs; ++s)
+    slab_start[size_t(s) + 1] += slab_start[size_t(s)];
+  std::vector<uint32_t> slab_gens(slab_start.back());
+  {
+    std::vector<size_t> fill(slab_start.begin(), slab_start.end() - 1);
+    for (int64_t i = 0; i < count; ++i) {
+      const NodeBox& b = boxes[size_t(i)];
+      if (touches(b))
+        for (int s = b.lo[2] / slab; s <= b.hi[2] / slab; ++s)
+          slab_gens[fill[size_t(s)]++] = uint32_t(i);
+    }
+  }
+
+#pragma omp parallel
+  {
+    std::vector<double> acc(plane * size_t(slab));
+    std::vector<double> u(static_cast<size_t>(nx)), v(static_cast<size_t>(ny)),
+        w(static_cast<size_t>(nz));
+#pragma omp for schedule(dynamic, 1)
+    for (int s = 0; s < slabs; ++s) {
+      const int z_begin = s * slab, z_end = std::min(nz, z_begin + slab);
+      std::fill(acc.begin(), acc.end(), 0.0);
+      for (size_t k = slab_start[size_t(s)]; k < slab_start[size_t(s) + 1]; ++k) {
+        const uint32_t gi = slab_gens[k];
+        const NodeBox& b = boxes[gi];
+        const glm::dvec3 p = gens[gi];
+        const int xl = b.lo[0], xh = b.hi[0], yl = b.lo[1], yh = b.hi[1];
+        const int zl = std::max(b.lo[2], z_begin), zh = std::min(b.hi[2], z_end - 1);
+        // Squared distances over rho^2 per axis: s = u[x] + v[y] + w[z], and
+        // D = (1 - s)^2 where s < 1 (Luft et al. Eq. 2).
+        for (int x = xl; x <= xh; ++x) {
+          const double d = xs[size_t(x)] - p.x;
+          u[size_t(x)] = d * d * inv_r2;
+        }
+        for (int y = yl; y <= yh; ++y) {
+          const double d = ys[size_t(y)] - p.y;
+          v[size_t(y)] = d * d * inv_r2;
+        }
+        for (int z = zl; z <= zh; ++z) {
+          const double d = zs[size_t(z)] - p.z;
+          w[size_t(z)] = d * d * inv_r2;
+        }
+        const double gx = (p.x - xs[0]) / h;  // generator x in node units
+        splat_planes(acc.data() + size_t(zl - z_begin) * plane, plane, nx, zh - zl + 1, yl, yh, xl,
+                     xh, u.data(), v.data(), w.data() + zl, gx, (p.y - ys[0]) / h, rho_nodes);
+      }
+      // Luft et al. Eq. 3: F = sum D_i - tau.
+      for (int z = z_begin; z < z_end; ++z) {
+        const double* src = acc.data() + size_t(z - z_begin) * plane;
+        float* dst = grid.values.data() + size_t(z) * plane;
+        for (size_t i = 0; i < plane; ++i)
+          dst[i] = float(src[i] - tau);
+      }
+    }
+  }
+}
+
+}  // namespace sylva

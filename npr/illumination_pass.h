@@ -1,0 +1,36 @@
+// The Luft preprocessing as a scene-level render-graph node (DESIGN.md §3): it writes
+// "vertex-shading" (std::shared_ptr<const VertexShading>), which the raster pass reads only
+// for styles that want realigned normals or density ka, so for every other style compile()
+// culls it and nothing is computed.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "core/graph/render_graph.h"
+#include "npr/foliage_illumination.h"
+
+namespace sylva {
+
+// What the normal buffer and the shading see.
+enum class NormalMode {
+  Original,         // the model's normals; no preprocessing
+  Realigned,        // Luft §3.3 realigned unit normals, density ka
+  RealignedScaled,  // as Realigned, and the normal target keeps |N| = ka (Luft Fig. 7c)
+};
+// "original", "realigned", "realigned-scaled"; throws InputError(where, ...).
+NormalMode parse_normal_mode(const std::string& text, const std::string& where);
+
+struct IlluminationSetup {
+  const Scene* scene = nullptr;  // outlives execute()
+  FoliageParams params;
+  KaEncoding encoding = KaEncoding::Length;
+  std::string surface_out;  // when set, the implicit surface is written there as .glb
+  std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty
+  std::string option_prefix;  // "--": parameter errors name the CLI option ("--tau")
+};
+
+// Returns the "vertex-shading" resource.
+int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup);
+
+}  // namespace sylva

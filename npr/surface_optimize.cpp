@@ -1,0 +1,137 @@
+// Optional mesh optimisation of the extracted implicit surface (Luft & Balzer 2006: "an
+// additional mesh optimization may be applied ... to obtain a homogeneous mesh with a lower
+// number of primitives and more consistent vertex normals"): Laplacian smoothing and
+// quadric-error decimation with OpenMesh. The heap-based DecimaterT is used rather than
+// McDecimaterT because the latter samples with the global rand(), which would make the
+// output depend on unrelated code.
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Smoother/JacobiLaplaceSmootherT.hh>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/error.h"
+#include "npr/implicit_surface.h"
+
+namespace sylva {
+namespace {
+
+struct MeshTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+
+// add_face() refuses (and logs) faces that would make an edge or a vertex non-manifold;
+// marching cubes can produce such spots where two sheets touch at exact zeros. Those
+// faces are predicted here and get their own copies of the vertices instead.
+bool can_add_face(const Mesh& m, const std::array<Mesh::VertexHandle, 3>& v) {
+  for (int i = 0; i < 3; ++i) {
+    if (!m.is_boundary(v[size_t(i)])) return false;  // isolated vertices count as boundary
+    const auto he = m.find_halfedge(v[size_t(i)], v[size_t((i + 1) % 3)]);
+    if (he.is_valid() && !m.is_boundary(he)) return false;
+  }
+  return true;
+}
+
+Mesh to_openmesh(const SurfaceMesh& in) {
+  Mesh m;
+  m.reserve(in.positions.size(), in.indices.size() / 2, in.triangle_count());
+  std::vector<Mesh::VertexHandle> vh;
+  vh.reserve(in.positions.size());
+  for (const glm::vec3& p : in.positions)
+    vh.push_back(m.add_vertex(Mesh::Point(p.x, p.y, p.z)));
+  for (size_t t = 0; t < in.triangle_count(); ++t) {
+    const uint32_t* idx = &in.indices[3 * t];
+    if (idx[0] == idx[1] || idx[1] == idx[2] || idx[2] == idx[0]) continue;
+    std::array<Mesh::VertexHandle, 3> f = {vh[idx[0]], vh[idx[1]], vh[idx[2]]};
+    if (!can_add_face(m, f) || !m.add_face(f[0], f[1], f[2]).is_valid()) {
+      for (auto& v : f)
+        v = m.add_vertex(m.point(v));
+      m.add_face(f[0], f[1], f[2]);
+    }
+  }
+  return m;
+}
+
+void from_openmesh(const Mesh& m, SurfaceMesh& out) {
+  out.positions.clear();
+  out.indices.clear();
+  out.normals.clear();
+  std::vector<uint32_t> remap(m.n_vertices(), UINT32_MAX);
+  for (const auto f : m.faces()) {
+    for (const auto v : f.vertices()) {
+      uint32_t& r = remap[size_t(v.idx())];
+      if (r == UINT32_MAX) r = 0;  // marks used; numbered below in vertex order
+    }
+  }
+  uint32_t n = 0;
+  for (const auto v : m.vertices()) {
+    uint32_t& r = remap[size_t(v.idx())];
+    if (r == UINT32_MAX) continue;
+    r = n++;
+    const auto& p = m.point(v);
+    const glm::vec3 q(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+    SYLVA_CHECK(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z),
+                "non-finite vertex after mesh optimisation");
+    out.positions.push_back(q);
+  }
+  out.indices.reserve(3 * m.n_faces());
+  for (const auto f : m.faces()) {
+    for (const auto v : f.vertices())
+      out.indices.push_back(remap[size_t(v.idx())]);
+  }
+}
+
+}  // namespace
+
+void optimize_surface(SurfaceMesh& mesh, const SurfaceOptimizeOptions& options) {
+  if (options.smooth_iterations < 0 || options.smooth_iterations > 100) {
+    throw InputError("smooth", "smoothing iterations must be an integer in [0, 100], got " +
+                                   std::to_string(options.smooth_iterations));
+  }
+  const double keep = options.keep_fraction;
+  if (!(std::isfinite(keep) && keep > 0.0 && keep <= 1.0)) {
+    throw InputError("decimate", "share of triangles kept must be a number in (0, 1], got " +
+                                     std::to_string(keep));
+  }
+  SYLVA_CHECK(mesh.indices.size() % 3 == 0, "surface indices are not triangles");
+  for (uint32_t i : mesh.indices)
+    SYLVA_CHECK(i < mesh.positions.size(), "index out of range");
+  mesh.normals.clear();
+  if (mesh.indices.empty() || (options.smooth_iterations == 0 && keep == 1.0)) return;
+
+  Mesh m = to_openmesh(mesh);
+
+  if (options.smooth_iterations > 0) {
+    // Uniform (umbrella) weights, full Laplacian: removes the staircase noise of marching
+    // cubes; boundary vertices (where the surface leaves the grid) stay fixed.
+    OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh> smoother(m);
+    smoother.initialize(OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh>::Tangential_and_Normal,
+                        OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh>::C0);
+    smoother.smooth(unsigned(options.smooth_iterations));
+  }
+
+  const size_t n_faces = m.n_faces();
+  const size_t target = std::max<size_t>(1, size_t(std::llround(keep * double(n_faces))));
+  if (target < n_faces) {
+    m.request_face_normals();  // ModNormalFlippingT would log a warning and compute them
+    m.update_face_normals();
+    OpenMesh::Decimater::DecimaterT<Mesh> decimater(m);
+    OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
+    OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle no_flips;
+    decimater.add(quadric);
+    decimater.add(no_flips);
+    decimater.module(quadric).unset_max_err();  // the face count alone stops it
+    decimater.initialize();
+    decimater.decimate_to_faces(0, target);
+    m.garbage_collection();
+  }
+
+  from_openmesh(m, mesh);
+}
+
+}  // namespace sylva
