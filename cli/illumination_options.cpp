@@ -77,8 +77,8 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
   } else if (o.normal_source == "gradient") {
     p.normals = NormalSource::Gradient;
   } else {
-    throw InputError("--normal-source", "unknown value '" + o.normal_source +
-                                            "' (allowed: surface, gradient)");
+    throw InputError("--normal-source",
+                     "unknown value '" + o.normal_source + "' (allowed: surface, gradient)");
   }
   p.ambient.ka_min = o.ka_min;
   p.ambient.exponent = o.exponent;
@@ -96,8 +96,7 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
                      "unknown value '" + o.ka_encoding + "' (allowed: length, attribute)");
   }
   if (o.smooth < 0 || o.smooth > 100) throw InputError("--smooth", "must be in [0, 100]");
-  if (!(o.decimate > 0.0 && o.decimate <= 1.0))
-    throw InputError("--decimate", "must be in (0, 1]");
+  if (!(o.decimate > 0.0 && o.decimate <= 1.0)) throw InputError("--decimate", "must be in (0, 1]");
   p.optimize.smooth_iterations = o.smooth;
   p.optimize.keep_fraction = o.decimate;
   p.per_triangle = o.per_triangle;

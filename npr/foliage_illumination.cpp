@@ -17,7 +17,9 @@ namespace sylva {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 constexpr double kSplatBudget = 67108864.0;  // 2^26 kernel evaluations for fraction = auto
 
@@ -33,7 +35,8 @@ size_t count_leaves(const Scene& scene) {
   size_t n = 0;
   for (const Mesh& m : scene.meshes)
     for (size_t t = 0; t < m.triangle_count(); ++t)
-      if (m.roles[t] == Role::Foliage && !seen[m.primitive_ids[t]]) seen[m.primitive_ids[t]] = 1, ++n;
+      if (m.roles[t] == Role::Foliage && !seen[m.primitive_ids[t]])
+        seen[m.primitive_ids[t]] = 1, ++n;
   return n;
 }
 
@@ -42,7 +45,8 @@ std::vector<char> foliage_vertices(const Mesh& m) {
   std::vector<char> f(m.positions.size(), 0);
   for (size_t t = 0; t < m.triangle_count(); ++t)
     if (m.roles[t] == Role::Foliage)
-      for (int k = 0; k < 3; ++k) f[m.indices[3 * t + k]] = 1;
+      for (int k = 0; k < 3; ++k)
+        f[m.indices[3 * t + k]] = 1;
   return f;
 }
 
@@ -79,13 +83,14 @@ void validate_foliage_params(const FoliageParams& p) {
 FoliageIllumination compute_foliage_illumination(const Scene& scene, const FoliageParams& p) {
   validate_foliage_params(p);
   for (const Mesh& m : scene.meshes)
-    SYLVA_CHECK(m.roles.size() == m.triangle_count() &&
-                    m.primitive_ids.size() == m.triangle_count(),
-                "foliage illumination needs roles and primitive ids (finish_scene)");
+    SYLVA_CHECK(
+        m.roles.size() == m.triangle_count() && m.primitive_ids.size() == m.triangle_count(),
+        "foliage illumination needs roles and primitive ids (finish_scene)");
   const Bounds fb = scene.bounds(Role::Foliage);
   if (fb.empty())
-    throw InputError("scene", "has no foliage to build the implicit surface from (see "
-                              "--foliage and `sylva info`)");
+    throw InputError("scene",
+                     "has no foliage to build the implicit surface from (see "
+                     "--foliage and `sylva info`)");
   FoliageIllumination out;
   FoliageStats& st = out.stats;
   auto t0 = Clock::now();
@@ -102,9 +107,9 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
 
   ScalarGrid grid = make_grid(fb.min - glm::vec3(rho), fb.max + glm::vec3(rho), p.grid);
   const double ball = 4.0 / 3.0 * std::numbers::pi * std::pow(st.rho / grid.spacing, 3.0);
-  st.fraction = p.fraction ? *p.fraction
-                           : std::clamp(kSplatBudget / (double(st.leaves) * std::max(ball, 1.0)),
-                                        1e-6, 1.0);
+  st.fraction =
+      p.fraction ? *p.fraction
+                 : std::clamp(kSplatBudget / (double(st.leaves) * std::max(ball, 1.0)), 1e-6, 1.0);
   GeneratorOptions go;
   go.fraction = st.fraction;
   go.per_triangle = p.per_triangle;
@@ -120,7 +125,8 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
     const DensityField raw(generators, rho, 0.0f);
     const size_t stride = std::max<size_t>(1, generators.size() / 4096);
     std::vector<float> at;
-    for (size_t i = 0; i < generators.size(); i += stride) at.push_back(raw.value(generators[i]));
+    for (size_t i = 0; i < generators.size(); i += stride)
+      at.push_back(raw.value(generators[i]));
     st.tau = 0.5 * quantile(at, 0.10);
   }
   const DensityField field(std::move(generators), rho, float(st.tau));
@@ -129,7 +135,8 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
   if (!(*hi > 0.0f)) {
     char buf[256];
     float peak = -float(st.tau);  // is the surface there but between the grid's nodes?
-    for (size_t i = 0; i < field.generators().size(); i += std::max<size_t>(1, st.generators / 4096))
+    for (size_t i = 0; i < field.generators().size();
+         i += std::max<size_t>(1, st.generators / 4096))
       peak = std::max(peak, field.value(field.generators()[i]));
     if (peak > 0.0f) {
       std::snprintf(buf, sizeof buf,
@@ -156,14 +163,14 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
     for (long i = 0; i < long(out.surface.positions.size()); ++i) {
       glm::vec3 g;
       field.value_and_gradient(out.surface.positions[size_t(i)], g);
-      out.surface.normals[size_t(i)] =
-          unit_or(-g, unit_or(-grid.sample_gradient(out.surface.positions[size_t(i)]),
-                              glm::vec3(0, 1, 0)));
+      out.surface.normals[size_t(i)] = unit_or(
+          -g, unit_or(-grid.sample_gradient(out.surface.positions[size_t(i)]), glm::vec3(0, 1, 0)));
     }
     st.surface_triangles = out.surface.triangle_count();
     if (out.surface.positions.empty())
-      throw InputError("grid", "the implicit surface has no vertices at this grid resolution; "
-                               "raise grid or rho");
+      throw InputError("grid",
+                       "the implicit surface has no vertices at this grid resolution; "
+                       "raise grid or rho");
   }
   st.seconds_surface = since(t0);
 

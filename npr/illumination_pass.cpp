@@ -12,8 +12,8 @@ NormalMode parse_normal_mode(const std::string& text, const std::string& where) 
   if (text == "original") return NormalMode::Original;
   if (text == "realigned") return NormalMode::Realigned;
   if (text == "realigned-scaled") return NormalMode::RealignedScaled;
-  throw InputError(where, "unknown value '" + text +
-                              "' (allowed: original, realigned, realigned-scaled)");
+  throw InputError(where,
+                   "unknown value '" + text + "' (allowed: original, realigned, realigned-scaled)");
 }
 
 namespace {

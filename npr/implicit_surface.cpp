@@ -4,7 +4,11 @@
 // the sign changes are joined into oriented segments; ambiguous faces (diagonal corners
 // alike) are resolved with the asymptotic decider (Nielson & Hamann 1991), which depends
 // only on the face's four values, so the two cells sharing a face always agree and the
-// mesh has no cracks. Each cell's segments close into loops, triangulated as fans.
+// mesh has no cracks (unlike the classic table, whose ambiguous cases can leave holes).
+// Each cell's segments close into loops, triangulated as fans (or, for the rare loop that
+// crosses faces twice everywhere, around a centre vertex). Ambiguities inside a cell
+// (tunnels of the trilinear interpolant) are not resolved; the mesh is still closed.
+// Inside is value > 0: exact zeros are outside, and the surface passes through them.
 #include "npr/implicit_surface.h"
 
 #include <algorithm>

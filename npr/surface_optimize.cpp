@@ -126,6 +126,9 @@ void optimize_surface(SurfaceMesh& mesh, const SurfaceOptimizeOptions& options) 
     decimater.add(quadric);
     decimater.add(no_flips);
     decimater.module(quadric).unset_max_err();  // the face count alone stops it
+    // No collapse may turn a face by more than 45 degrees: keeps faces from folding over
+    // (the default 90 lets a face end up edge-on to the surface it approximates).
+    decimater.module(no_flips).set_max_normal_deviation(45.0);
     decimater.initialize();
     decimater.decimate_to_faces(0, target);
     m.garbage_collection();

@@ -22,8 +22,10 @@ bool parse_number(const std::string& s, double& out) {
 SceneLength SceneLength::parse(const std::string& text, const std::string& where) {
   SceneLength l;
   if (text == "auto") return l;
-  const std::string forms = "expected 'auto', a length in scene units > 0 (e.g. 0.3) or a "
-                            "percentage of the scene (e.g. 8%), got '" + text + "'";
+  const std::string forms =
+      "expected 'auto', a length in scene units > 0 (e.g. 0.3) or a "
+      "percentage of the scene (e.g. 8%), got '" +
+      text + "'";
   if (!text.empty() && text.back() == '%') {
     if (!parse_number(text.substr(0, text.size() - 1), l.value) || !(l.value > 0.0) ||
         l.value > 10000.0)
