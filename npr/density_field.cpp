@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -39,53 +40,83 @@ std::string number(float v) {
   return buf;
 }
 
-// Luft et al. Eq. 2 summed over n points (SoA) around q. Branch-free (max(1 - s, 0)) and in
-// four fixed lanes, point i in lane i % 4, so the rounding is the same whatever vector width
-// the compiler picks (the AVX2 clone gives the same bytes as the default one).
+// Four doubles: GCC lowers these to two SSE2 registers or one AVX2 register, with the same
+// per-lane rounding either way.
+typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+
+// (By reference: passing AVX vectors by value would depend on the target's ABI.)
+void load4(const float* p, v4d& out) {
+  v4f f;
+  std::memcpy(&f, p, sizeof f);
+  out = __builtin_convertvector(f, v4d);
+}
+
+double lane_sum(const v4d& v) {
+  return (v[0] + v[1]) + (v[2] + v[3]);
+}
+
+// Luft et al. Eq. 2 summed over n points (SoA) around q: branch-free (max(1 - s, 0)) in four
+// fixed lanes, point i in lane i % 4, so the result does not depend on the vector width.
 __attribute__((target_clones("avx2", "default"))) double kernel_sum(const float* x, const float* y,
                                                                     const float* z, size_t n,
                                                                     double qx, double qy, double qz,
                                                                     double inv_r2) {
-  double lane[4] = {0.0, 0.0, 0.0, 0.0};
-  auto term = [&](size_t i) {
-    const double dx = qx - double(x[i]), dy = qy - double(y[i]), dz = qz - double(z[i]);
-    const double d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
-    const double t = 0.5 * (d + std::abs(d));  // max(1 - s, 0)
-    return t * t;
-  };
+  v4d acc = {0.0, 0.0, 0.0, 0.0};
   size_t i = 0;
-  for (; i + 4 <= n; i += 4)
-    for (size_t k = 0; k < 4; ++k)
-      lane[k] += term(i + k);
-  for (size_t k = 0; i + k < n; ++k)
-    lane[k] += term(i + k);
-  return (lane[0] + lane[1]) + (lane[2] + lane[3]);
+  for (; i + 4 <= n; i += 4) {
+    v4d px, py, pz;
+    load4(x + i, px);
+    load4(y + i, py);
+    load4(z + i, pz);
+    const v4d dx = qx - px, dy = qy - py, dz = qz - pz;
+    const v4d d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
+    const v4d t = d > 0.0 ? d : 0.0;
+    acc += t * t;
+  }
+  for (size_t k = 0; i + k < n; ++k) {
+    const double dx = qx - double(x[i + k]), dy = qy - double(y[i + k]), dz = qz - double(z[i + k]);
+    const double d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
+    const double t = d > 0.0 ? d : 0.0;
+    acc[k] += t * t;
+  }
+  return lane_sum(acc);
 }
 
 // kernel_sum and the sum of the analytic gradients -4 (1 - s) (q - p) / rho^2.
 __attribute__((target_clones("avx2", "default"))) double kernel_sum_gradient(
     const float* x, const float* y, const float* z, size_t n, double qx, double qy, double qz,
     double inv_r2, double grad[3]) {
-  double lane[4][4] = {};  // [value, gx, gy, gz][lane]
-  auto add = [&](size_t i, size_t k) {
-    const double dx = qx - double(x[i]), dy = qy - double(y[i]), dz = qz - double(z[i]);
-    const double d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
-    const double t = 0.5 * (d + std::abs(d));  // max(1 - s, 0)
-    const double g = -4.0 * t * inv_r2;
-    lane[0][k] += t * t;
-    lane[1][k] += g * dx;
-    lane[2][k] += g * dy;
-    lane[3][k] += g * dz;
-  };
+  v4d acc = {0.0, 0.0, 0.0, 0.0}, gx = acc, gy = acc, gz = acc;
   size_t i = 0;
-  for (; i + 4 <= n; i += 4)
-    for (size_t k = 0; k < 4; ++k)
-      add(i + k, k);
-  for (size_t k = 0; i + k < n; ++k)
-    add(i + k, k);
-  for (int c = 0; c < 3; ++c)
-    grad[c] = (lane[c + 1][0] + lane[c + 1][1]) + (lane[c + 1][2] + lane[c + 1][3]);
-  return (lane[0][0] + lane[0][1]) + (lane[0][2] + lane[0][3]);
+  for (; i + 4 <= n; i += 4) {
+    v4d px, py, pz;
+    load4(x + i, px);
+    load4(y + i, py);
+    load4(z + i, pz);
+    const v4d dx = qx - px, dy = qy - py, dz = qz - pz;
+    const v4d d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
+    const v4d t = d > 0.0 ? d : 0.0;
+    const v4d g = -4.0 * t * inv_r2;
+    acc += t * t;
+    gx += g * dx;
+    gy += g * dy;
+    gz += g * dz;
+  }
+  for (size_t k = 0; i + k < n; ++k) {
+    const double dx = qx - double(x[i + k]), dy = qy - double(y[i + k]), dz = qz - double(z[i + k]);
+    const double d = 1.0 - (dx * dx + dy * dy + dz * dz) * inv_r2;
+    const double t = d > 0.0 ? d : 0.0;
+    const double g = -4.0 * t * inv_r2;
+    acc[k] += t * t;
+    gx[k] += g * dx;
+    gy[k] += g * dy;
+    gz[k] += g * dz;
+  }
+  grad[0] = lane_sum(gx);
+  grad[1] = lane_sum(gy);
+  grad[2] = lane_sum(gz);
+  return lane_sum(acc);
 }
 
 }  // namespace
@@ -177,10 +208,9 @@ DensityField::DensityField(std::vector<glm::vec3> generators, float rho, float t
   const uint64_t cells = uint64_t(ix.n[0]) * uint64_t(ix.n[1]) * uint64_t(ix.n[2]);
 
   std::vector<uint64_t> key(count);
-#pragma omp parallel for schedule(static)
-  for (int64_t i = 0; i < int64_t(count); ++i) {
-    const glm::dvec3 p = m_generators[size_t(i)];
-    key[size_t(i)] = ix.key(ix.coord(p.x, 0), ix.coord(p.y, 1), ix.coord(p.z, 2));
+  for (size_t i = 0; i < count; ++i) {
+    const glm::dvec3 p = m_generators[i];
+    key[i] = ix.key(ix.coord(p.x, 0), ix.coord(p.y, 1), ix.coord(p.z, 2));
   }
 
   ix.px.resize(count);
@@ -245,7 +275,8 @@ float DensityField::value(const glm::vec3& q) const {
   const double inv_r2 = 1.0 / (double(m_rho) * double(m_rho));
   double sum = 0.0;
   ix.for_near(qd, m_rho, [&](uint32_t b, uint32_t e) {
-    sum += kernel_sum(&ix.px[b], &ix.py[b], &ix.pz[b], e - b, qd.x, qd.y, qd.z, inv_r2);
+    sum += kernel_sum(ix.px.data() + b, ix.py.data() + b, ix.pz.data() + b, e - b, qd.x, qd.y, qd.z,
+                      inv_r2);
   });
   return float(sum - double(m_tau));  // Luft et al. Eq. 3
 }
@@ -259,7 +290,8 @@ float DensityField::value_and_gradient(const glm::vec3& q, glm::vec3& gradient) 
   glm::dvec3 grad(0.0);
   ix.for_near(qd, m_rho, [&](uint32_t b, uint32_t e) {
     double g[3];
-    sum += kernel_sum_gradient(&ix.px[b], &ix.py[b], &ix.pz[b], e - b, qd.x, qd.y, qd.z, inv_r2, g);
+    sum += kernel_sum_gradient(ix.px.data() + b, ix.py.data() + b, ix.pz.data() + b, e - b, qd.x,
+                               qd.y, qd.z, inv_r2, g);
     grad += glm::dvec3(g[0], g[1], g[2]);
   });
   gradient = glm::vec3(grad);
@@ -292,19 +324,19 @@ void node_span(double lo, double hi, int first, int last, int& a, int& e) {
 
 // Adds one generator's kernel (Luft et al. Eq. 2) to `planes` consecutive planes starting at
 // `dst`: s = u[x] + v[y] + w[z] (squared distances over rho^2 per axis), D = (1 - s)^2 where
-// s < 1. (gx, gy) is the generator in node units. Each plane visits the square around the
-// ball's cross-section without branches (max(1 - s, 0) zeroes the corners): cheaper than
-// exact row spans, whose set-up and mispredictions cost more than the nodes they save.
-// Compiled for AVX2 too (no FMA, so every version gives the same bytes).
+// s < 1. (gx, gy) is the generator in node units, `widen` the slack for node drift. Each plane
+// visits the square around the ball's cross-section without branches (max(1 - s, 0) zeroes the
+// corners): cheaper than exact row spans, whose set-up and mispredictions cost more than the nodes
+// they save. Compiled for AVX2 too (no FMA, so every version gives the same bytes).
 __attribute__((target_clones("avx2", "default"))) void splat_planes(
     double* dst, size_t plane, int nx, int planes, int yl, int yh, int xl, int xh, const double* u,
-    const double* v, const double* w, double gx, double gy, double rho_nodes) {
+    const double* v, const double* w, double gx, double gy, double rho_nodes, double widen) {
   for (int z = 0; z < planes; ++z) {
     const double cz = 1.0 - w[z];
     if (!(cz > 0.0)) continue;
     // The cross-section's radius in node units (a node rounding moves across the rim adds
     // (1 - s)^2 ~ 0).
-    const double half = rho_nodes * std::sqrt(cz);
+    const double half = rho_nodes * std::sqrt(cz) + widen;
     int xa, xe, ya, ye;
     node_span(gx - half, gx + half, xl, xh, xa, xe);
     node_span(gy - half, gy + half, yl, yh, ya, ye);
@@ -352,6 +384,17 @@ void DensityField::fill_grid(ScalarGrid& grid) const {
   const double inv_r2 = 1.0 / (rho * rho);
   const double h = grid.spacing;
   const double rho_nodes = rho / h;
+  // Node ranges are found arithmetically (node i at coords[0] + i h) while the kernel uses
+  // the float node coordinates. Where float rounding moves nodes by more than 1e-4 rho (a
+  // grid far from the origin for its spacing, or a rho below the rounding), the ranges grow
+  // by that many nodes so that no node within rho is missed; otherwise a missed rim node
+  // would add at most (2e-4)^2.
+  double drift = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < dims[a]; ++i)
+      drift = std::max(drift, std::abs(coords[a][size_t(i)] - (coords[a][0] + h * double(i))));
+  const double widen =
+      drift <= 1e-4 * rho ? 0.0 : std::ceil(std::min(drift / h, double(1 << 30))) + 1.0;
   const double tau = m_tau;
   const std::vector<glm::vec3>& gens = m_generators;
   const int64_t count = int64_t(gens.size());
@@ -363,7 +406,7 @@ void DensityField::fill_grid(ScalarGrid& grid) const {
     bool near = true;
     for (int a = 0; a < 3; ++a) {
       const double g = (double(gens[size_t(i)][a]) - coords[a][0]) / h;
-      const double lo = g - rho_nodes - 1.0, hi = g + rho_nodes + 1.0;
+      const double lo = g - rho_nodes - 1.0 - widen, hi = g + rho_nodes + 1.0 + widen;
       near = hi >= 0.0 && lo <= double(dims[a] - 1);
       if (!near) break;
       box.lo[a] = int(std::ceil(std::max(lo, 0.0)));
@@ -430,7 +473,8 @@ void DensityField::fill_grid(ScalarGrid& grid) const {
         }
         const double gx = (p.x - xs[0]) / h;  // generator x in node units
         splat_planes(acc.data() + size_t(zl - z_begin) * plane, plane, nx, zh - zl + 1, yl, yh, xl,
-                     xh, u.data(), v.data(), w.data() + zl, gx, (p.y - ys[0]) / h, rho_nodes);
+                     xh, u.data(), v.data(), w.data() + zl, gx, (p.y - ys[0]) / h, rho_nodes,
+                     widen);
       }
       // Luft et al. Eq. 3: F = sum D_i - tau.
       for (int z = z_begin; z < z_end; ++z) {

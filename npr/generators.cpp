@@ -101,30 +101,68 @@ std::vector<glm::vec3> make_generators(const Scene& scene, const GeneratorOption
   const size_t slots = dense ? size_t(max_id) + 1 : ids.size();
 
   struct Accum {
-    glm::dvec3 weighted{0.0};  // sum of area * centroid
-    glm::dvec3 corners{0.0};   // sum of corner positions
+    glm::dvec3 weighted{0.0};  // sum of area * centroid, or of corners when `corners`
     double area = 0.0;
-    uint32_t corner_count = 0;
   };
   std::vector<Accum> acc(slots);
-  for (const Mesh& m : scene.meshes)
-    for (size_t t = 0; t < m.triangle_count(); ++t) {
-      if (m.roles[t] != Role::Foliage) continue;
-      const glm::dvec3 a = m.positions[m.indices[3 * t]];
-      const glm::dvec3 b = m.positions[m.indices[3 * t + 1]];
-      const glm::dvec3 c = m.positions[m.indices[3 * t + 2]];
-      const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
-      Accum& s = acc[slot_of(m.primitive_ids[t])];
-      s.weighted += area * (a + b + c) / 3.0;
-      s.area += area;
-      s.corners += a + b + c;
-      s.corner_count += 3;
+  std::vector<uint8_t> used(slots, 0);
+  // Consecutive triangles of one primitive (the usual layout) are summed locally first.
+  auto accumulate = [&](bool corners_only) {
+    for (const Mesh& m : scene.meshes) {
+      size_t run_slot = 0;
+      Accum run;
+      bool open = false;
+      for (size_t t = 0; t < m.triangle_count(); ++t) {
+        if (m.roles[t] != Role::Foliage) continue;
+        const size_t slot = slot_of(m.primitive_ids[t]);
+        if (corners_only && acc[slot].area != 0.0) continue;
+        if (open && slot != run_slot) {
+          acc[run_slot].weighted += run.weighted;
+          acc[run_slot].area += run.area;
+          run = Accum{};
+        }
+        run_slot = slot;
+        open = true;
+        used[slot] = 1;
+        const glm::dvec3 a = m.positions[m.indices[3 * t]];
+        const glm::dvec3 b = m.positions[m.indices[3 * t + 1]];
+        const glm::dvec3 c = m.positions[m.indices[3 * t + 2]];
+        if (corners_only) {
+          run.weighted += a + b + c;
+        } else {
+          const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+          run.weighted += area * (a + b + c) / 3.0;
+          run.area += area;
+        }
+      }
+      if (open) {
+        acc[run_slot].weighted += run.weighted;
+        acc[run_slot].area += run.area;
+      }
     }
-  points.reserve(dense ? foliage_triangles : slots);
-  for (const Accum& s : acc) {
-    if (s.corner_count == 0) continue;  // an id without foliage triangles
+  };
+  accumulate(false);
+  size_t count = 0;
+  bool zero_area = false;
+  for (size_t i = 0; i < slots; ++i) {
+    count += used[i];
+    zero_area = zero_area || (used[i] && acc[i].area == 0.0);
+  }
+  // Primitives without area: the mean of their corners (3 per triangle) instead.
+  std::vector<uint32_t> corner_count;
+  if (zero_area) {
+    corner_count.assign(slots, 0);
+    for (const Mesh& m : scene.meshes)
+      for (size_t t = 0; t < m.triangle_count(); ++t)
+        if (m.roles[t] == Role::Foliage) corner_count[slot_of(m.primitive_ids[t])] += 3;
+    accumulate(true);
+  }
+  points.reserve(count);
+  for (size_t i = 0; i < slots; ++i) {
+    if (!used[i]) continue;  // an id without foliage triangles
+    const Accum& s = acc[i];
     points.push_back(s.area > 0.0 ? glm::vec3(s.weighted / s.area)
-                                  : glm::vec3(s.corners / double(s.corner_count)));
+                                  : glm::vec3(s.weighted / double(corner_count[i])));
   }
   return keep_fraction(std::move(points), options.fraction, options.seed);
 }

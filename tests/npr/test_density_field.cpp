@@ -156,6 +156,20 @@ TEST(Density, FillGridEqualsValueAtEveryNode) {
   expect_grid_matches_value(f, one);
 }
 
+TEST(Density, FillGridFarFromTheOrigin) {
+  // Float node positions near 1e5 are 1/128 apart, coarser than the spacing (1/256): nodes
+  // pile up, and each still gets exactly value() at its (rounded) position.
+  const std::vector<glm::vec3> gens = random_points(300, 41, 0.2f, glm::vec3(1e5f));
+  DensityField f(gens, 0.03f, 0.5f);
+  ScalarGrid g;
+  g.dims = {60, 60, 60};
+  g.origin = glm::vec3(1e5f) - glm::vec3(0.02f);
+  g.spacing = 1.0f / 256.0f;
+  f.fill_grid(g);
+  expect_grid_matches_value(f, g);
+  EXPECT_GT(*std::max_element(g.values.begin(), g.values.end()), 0.0f);
+}
+
 TEST(Density, FillGridOnASampleTree) {
   PlantOptions o;
   o.leaves = 3000;

@@ -93,12 +93,27 @@ TEST(Generators, AreaWeightedCentroidOfAQuad) {
 
 TEST(Generators, ZeroAreaPrimitiveFallsBackToVertexMean) {
   Scene s;
-  // Collinear corners: no area, so the centre is the mean of the corners.
-  s.meshes = {mesh_of({{0, 0, 0}, {1, 0, 0}, {5, 0, 0}}, {0, 1, 2}, {1}, Role::Foliage)};
+  // Primitive 1: collinear corners, no area, so the centre is the mean of the corners.
+  // Primitive 2: the quad plus a degenerate sliver, which has no weight.
+  // Primitive 3: two collinear triangles (corners counted per triangle).
+  Mesh m = mesh_of({{0, 0, 0}, {1, 0, 0}, {5, 0, 0}}, {0, 1, 2}, {1}, Role::Foliage);
+  Mesh q = quad(2, 1.0f);
+  q.positions.push_back({100, 0, 1});
+  q.indices.insert(q.indices.end(), {0, 1, 4});  // (0,0,1), (2,0,1), (100,0,1): collinear
+  q.primitive_ids.push_back(2);
+  q.roles.push_back(Role::Foliage);
+  Mesh line = mesh_of({{0, 0, 2}, {0, 3, 2}, {0, 6, 2}, {0, 9, 2}}, {0, 1, 2, 1, 2, 3}, {3, 3},
+                      Role::Foliage);
+  s.meshes = {m, q, line};
   std::vector<glm::vec3> g = make_generators(s, {});
-  ASSERT_EQ(g.size(), 1u);
+  ASSERT_EQ(g.size(), 3u);
   EXPECT_NEAR(g[0].x, 2.0f, 1e-6f);
-  EXPECT_TRUE(std::isfinite(g[0].y) && std::isfinite(g[0].z));
+  EXPECT_NEAR(g[0].y, 0.0f, 1e-6f);
+  EXPECT_NEAR(g[1].x, 5.0f / 6.0f, 1e-6f);
+  EXPECT_NEAR(g[1].y, 13.0f / 12.0f, 1e-6f);
+  EXPECT_NEAR(g[1].z, 1.0f, 1e-6f);
+  EXPECT_NEAR(g[2].y, 4.5f, 1e-6f);  // (0 + 3 + 6 + 3 + 6 + 9) / 6
+  EXPECT_NEAR(g[2].z, 2.0f, 1e-6f);
 }
 
 TEST(Generators, PrimitiveIdOrderAcrossMeshesAndSparseIds) {
