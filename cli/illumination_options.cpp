@@ -5,11 +5,12 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "core/cache/result_cache.h"
 #include "core/error.h"
 
 namespace sylva::cli {
 
-void add_illumination_options(CLI::App& cmd, IlluminationOptions& o) {
+void add_illumination_options(CLI::App& cmd, IlluminationOptions& o, bool with_ka_encoding) {
   const std::string group = "Foliage illumination (Luft et al.; styles that use it)";
   auto add = [&](const std::string& name, auto& value, const std::string& help) {
     cmd.add_option(name, value, help)->capture_default_str()->group(group);
@@ -25,12 +26,19 @@ void add_illumination_options(CLI::App& cmd, IlluminationOptions& o) {
   add("--ka-min", o.ka_min, "Smallest ambient coefficient (Eq. 4), [0, 1]");
   add("--d-min", o.d_min, "Density where ka reaches ka-min: auto or > 0");
   add("--exponent", o.exponent, "Exponent n of Eq. 4, (0, 100]");
-  add("--ka-encoding", o.ka_encoding, "length (in the normal, Luft) or attribute");
+  if (with_ka_encoding)
+    add("--ka-encoding", o.ka_encoding, "length (in the normal, Luft) or attribute");
   add("--smooth", o.smooth, "Laplacian smoothing passes on the surface, [0, 100]");
   add("--decimate", o.decimate, "Share of surface triangles kept, (0, 1]");
   cmd.add_flag("--per-triangle", o.per_triangle, "One generator per foliage triangle")
       ->group(group);
   cmd.add_option("--surface-out", o.surface_out, "Also write the implicit surface (.glb)")
+      ->group(group);
+  cmd.add_flag("--no-cache", o.no_cache,
+               "Recompute the preprocessing; do not read or write the cache")
+      ->group(group);
+  cmd.add_option("--cache-dir", o.cache_dir,
+                 "Result cache folder (default $SYLVA_CACHE_DIR, else ~/.cache/sylva)")
       ->group(group);
 }
 
@@ -103,6 +111,7 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
   p.seed = seed;
   if (!o.surface_out.empty()) check_output_path("--surface-out", o.surface_out, {".glb"});
   s.surface_out = o.surface_out;
+  if (!o.no_cache) s.cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
   s.option_prefix = "--";
   s.on_done = [](const FoliageStats& st) {
     std::fprintf(stderr, "foliage illumination: %s\n", describe(st).c_str());

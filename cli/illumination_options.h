@@ -1,6 +1,6 @@
-// Options of the Luft preprocessing (render, buffers, and later bake/tradeoff): --rho,
+// Options of the Luft preprocessing (render, buffers, bake, and later tradeoff): --rho,
 // --tau, --fraction, --grid, --blend, --normal-source, --ka-min, --d-min, --exponent,
-// --ka-encoding, --smooth, --decimate, --per-triangle, --surface-out.
+// --ka-encoding, --smooth, --decimate, --per-triangle, --surface-out, --no-cache, --cache-dir.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -22,8 +22,11 @@ struct IlluminationOptions {
   double decimate = 1.0;
   bool per_triangle = false;
   std::string surface_out;
+  bool no_cache = false;
+  std::string cache_dir;  // empty = default_cache_dir()
 };
-void add_illumination_options(CLI::App& cmd, IlluminationOptions& o);
+// with_ka_encoding = false leaves out --ka-encoding (for bake, which writes ka both ways).
+void add_illumination_options(CLI::App& cmd, IlluminationOptions& o, bool with_ka_encoding = true);
 
 // Parses and range-checks; seed comes from the scene options. Throws InputError naming the
 // option.

@@ -203,12 +203,15 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
 
   out.normals.resize(scene.meshes.size());
   out.ka.resize(scene.meshes.size());
+  // Foliage vertices of all meshes go through one nearest-surface query (scenes with a mesh
+  // per leaf would otherwise build a kd-tree per leaf).
+  std::vector<glm::vec3> points;
+  std::vector<std::pair<uint32_t, uint32_t>> which;  // (mesh, vertex)
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-    Mesh m = scene.meshes[mi].normals.empty() ? scene.meshes[mi] : Mesh{};
-    if (!m.positions.empty()) compute_vertex_normals(m);
-    const std::vector<glm::vec3>& own =
-        scene.meshes[mi].normals.empty() ? m.normals : scene.meshes[mi].normals;
     const Mesh& mesh = scene.meshes[mi];
+    Mesh m = mesh.normals.empty() ? mesh : Mesh{};
+    if (!m.positions.empty()) compute_vertex_normals(m);
+    const std::vector<glm::vec3>& own = mesh.normals.empty() ? m.normals : mesh.normals;
     std::vector<glm::vec3>& n = out.normals[mi];
     std::vector<float>& ka = out.ka[mi];
     n.resize(mesh.positions.size());
@@ -218,21 +221,22 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
       ka[v] = ambient_transfer(density[mi][v], ap);
     }
     const std::vector<char> fol = foliage_vertices(mesh);
-    std::vector<glm::vec3> points;
-    std::vector<size_t> which;
     for (size_t v = 0; v < fol.size(); ++v)
-      if (fol[v]) points.push_back(mesh.positions[v]), which.push_back(v);
-    if (points.empty()) continue;
-    std::vector<glm::vec3> target(points.size());
-    if (p.normals == NormalSource::Surface) {
-      target = nearest_surface_normals(out.surface, points);
-    } else {
+      if (fol[v]) points.push_back(mesh.positions[v]), which.emplace_back(mi, v);
+  }
+  std::vector<glm::vec3> target(points.size());
+  if (p.normals == NormalSource::Surface) {
+    if (!points.empty()) target = nearest_surface_normals(out.surface, points);
+  } else {
 #pragma omp parallel for schedule(static)
-      for (long i = 0; i < long(points.size()); ++i)
-        target[size_t(i)] = unit_or(-grid.sample_gradient(points[size_t(i)]), n[which[size_t(i)]]);
+    for (long i = 0; i < long(points.size()); ++i) {
+      const auto [mi, v] = which[size_t(i)];
+      target[size_t(i)] = unit_or(-grid.sample_gradient(points[size_t(i)]), out.normals[mi][v]);
     }
-    for (size_t i = 0; i < points.size(); ++i)
-      n[which[i]] = blend_normal(n[which[i]], target[i], p.blend);
+  }
+  for (size_t i = 0; i < points.size(); ++i) {
+    glm::vec3& n = out.normals[which[i].first][which[i].second];
+    n = blend_normal(n, target[i], p.blend);
   }
   st.seconds_shading = since(t0);
   return out;
@@ -257,10 +261,10 @@ std::string describe(const FoliageStats& s) {
   std::snprintf(buf, sizeof buf,
                 "%zu leaves, %zu generators (fraction %.3g), rho %.4g, tau %.4g, d_min %.4g, "
                 "F in [%.3g, %.3g], surface %zu triangles; %.2f s field, %.2f s surface, "
-                "%.2f s shading",
+                "%.2f s shading%s",
                 s.leaves, s.generators, s.fraction, s.rho, s.tau, s.d_min, s.density_min,
                 s.density_max, s.surface_triangles, s.seconds_field, s.seconds_surface,
-                s.seconds_shading);
+                s.seconds_shading, s.from_cache ? " (read from the cache)" : "");
   return buf;
 }
 

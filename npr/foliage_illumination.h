@@ -57,6 +57,7 @@ struct FoliageStats {
   double density_min = 0, density_max = 0;  // F over all shaded vertices
   size_t surface_triangles = 0;
   double seconds_field = 0, seconds_surface = 0, seconds_shading = 0;
+  bool from_cache = false;  // read from the result cache (timings are the computing run's)
 };
 
 struct FoliageIllumination {

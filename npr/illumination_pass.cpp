@@ -1,10 +1,12 @@
 #include "npr/illumination_pass.h"
 
+#include <cstdio>
 #include <memory>
 
 #include "core/error.h"
 #include "core/scene/gltf_write.h"
 #include "core/scene/load.h"
+#include "npr/foliage_cache.h"
 
 namespace sylva {
 
@@ -40,7 +42,12 @@ int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup) {
   graph.add_pass("foliage-illumination", {}, {out}, [out, setup](PassContext& ctx) {
     FoliageIllumination r;
     try {
-      r = compute_foliage_illumination(*setup.scene, setup.params);
+      const ResultCache cache(setup.cache_dir);
+      FoliageCacheUse use;
+      r = cached_foliage_illumination(*setup.scene, setup.params,
+                                      setup.cache_dir.empty() ? nullptr : &cache, &use);
+      if (!use.warning.empty())
+        std::fprintf(stderr, "sylva: warning: result cache not written: %s\n", use.warning.c_str());
     } catch (const InputError& e) {
       if (setup.option_prefix.empty() || e.where() == "scene") throw;
       const std::string what = e.what();

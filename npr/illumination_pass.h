@@ -26,6 +26,7 @@ struct IlluminationSetup {
   FoliageParams params;
   KaEncoding encoding = KaEncoding::Length;
   std::string surface_out;  // when set, the implicit surface is written there as .glb
+  std::string cache_dir;    // result cache folder (npr/foliage_cache.h); empty = no cache
   std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty
   std::string option_prefix;  // "--": parameter errors name the CLI option ("--tau")
 };

@@ -18,8 +18,14 @@ struct RunResult {
   int status = -1;     // exit status
   std::string output;  // stdout + stderr
 };
-// Runs `sylva <args>` through /bin/sh (args are passed verbatim).
+// Runs `sylva <args>` through /bin/sh (args are passed verbatim), with SYLVA_CACHE_DIR set
+// to a folder of the test run, so tests never read or fill the user's cache.
 RunResult run_sylva(const std::string& args);
+// Runs the Khronos glTF Validator (tests/tools/validate_gltf.mjs under node) on a .glb or
+// .gltf: output is "errors=N warnings=N" and the error messages, status 0 without errors.
+RunResult validate_gltf(const std::string& path);
+// Whether scripts/setup.sh installed the validator (npm, tests/tools/node_modules).
+bool gltf_validator_installed();
 
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& bytes);

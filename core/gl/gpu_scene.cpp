@@ -86,6 +86,7 @@ GpuMesh upload_mesh(const Mesh& mesh, uint32_t object_id) {
   g.buffers.push_back(make_buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices));
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  g.oriented_foliage = mesh.outward_normals;
   try {
     replace_shading(g, mesh.normals, mesh.ka, mesh.name);
   } catch (...) {

@@ -218,7 +218,8 @@ class Reader {
       std::string name = !src.name.empty()    ? src.name
                          : !node.name.empty() ? node.name
                                               : "mesh" + std::to_string(node.mesh);
-      if (src.primitives.size() > 1) name += "[" + std::to_string(k) + "]";
+      // Appended piecewise: "[" + std::string&& trips a GCC 12 -Wrestrict false positive.
+      if (src.primitives.size() > 1) name.append("[").append(std::to_string(k)).append("]");
       if (prim.mode >= 0 && prim.mode <= 3) {
         m_scene.report.warnings.push_back("mesh '" + name + "': points/lines primitive skipped");
         continue;
@@ -265,14 +266,30 @@ class Reader {
         for (size_t v = 0; v < nv; ++v)
           mesh.uvs[v] = glm::vec2(uv[2 * v], uv[2 * v + 1]);
       }
-      if (auto a = prim.attributes.find("COLOR_0"); a != prim.attributes.end()) {
-        std::vector<float> c = m_accessors.floats(a->second, comps, "COLOR_0");
+      // A baked file's COLOR_0 is the ka preview for other engines (gltf_write.h); its real
+      // vertex colours, if any, are in COLOR_1.
+      const Json* marker = json_at({"meshes", size_t(node.mesh), "extras", "sylva_color_0"});
+      const bool baked_colors = marker && marker->is_string() && *marker == "ambient";
+      const Json* outward = json_at({"meshes", size_t(node.mesh), "extras", "sylva_normals"});
+      mesh.outward_normals = outward && outward->is_string() && *outward == "outward";
+      const char* color_name = baked_colors ? "COLOR_1" : "COLOR_0";
+      if (auto a = prim.attributes.find(color_name); a != prim.attributes.end()) {
+        std::vector<float> c = m_accessors.floats(a->second, comps, color_name);
         if ((comps != 3 && comps != 4) || c.size() != nv * size_t(comps))
-          fail(where + ": COLOR_0 must be VEC3 or VEC4 with one per vertex");
+          fail(where + ": " + color_name + " must be VEC3 or VEC4 with one per vertex");
         mesh.colors.resize(nv);
         for (size_t v = 0; v < nv; ++v)
           mesh.colors[v] = glm::vec4(c[comps * v], c[comps * v + 1], c[comps * v + 2],
                                      comps == 4 ? c[comps * v + 3] : 1.0f);
+      }
+      if (auto a = prim.attributes.find("_AMBIENT"); a != prim.attributes.end()) {
+        mesh.ka = m_accessors.floats(a->second, comps, "_AMBIENT");
+        if (comps != 1 || mesh.ka.size() != nv)
+          fail(where + ": _AMBIENT must be SCALAR with one per vertex");
+        for (size_t v = 0; v < nv; ++v)
+          if (!(mesh.ka[v] >= 0.0f && mesh.ka[v] <= 1.0f))
+            fail(where + ": _AMBIENT (ambient coefficient) " + std::to_string(mesh.ka[v]) +
+                 " at vertex " + std::to_string(v) + " is outside [0, 1]");
       }
       std::vector<uint32_t> idx;
       if (prim.indices >= 0)

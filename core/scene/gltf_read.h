@@ -2,8 +2,11 @@
 // tinygltf: walks the default scene's node tree composing transforms, flattens every
 // triangle primitive into a world-space Mesh, reads base-colour materials and decodes their
 // textures to RGBA8, the plant hierarchy (extras "sylva_hierarchy") and per-mesh roles
-// (extras "sylva_role"). The result is raw: load.h's finish_scene validates it further and
-// assigns ids. Every malformed file throws InputError(path, "<what is wrong>").
+// (extras "sylva_role"), and the ambient coefficient "_AMBIENT" (SCALAR, each value in [0, 1])
+// into Mesh::ka; in files marked "sylva_color_0": "ambient" (gltf_write.h) COLOR_0 is only the
+// ka preview, so vertex colours come from COLOR_1. The result is raw: load.h's finish_scene
+// validates it further and assigns ids. Every malformed file throws
+// InputError(path, "<what is wrong>").
 #pragma once
 
 #include <string>

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
@@ -44,7 +45,8 @@ class BinBuilder {
   int attribute(const std::vector<T>& values, const char* type, bool with_bounds = false) {
     const int a = accessor(view(values.data(), values.size() * sizeof(T), kArrayBuffer), kFloat,
                            values.size(), type);
-    if (with_bounds) {  // required for POSITION
+    if (!with_bounds) return a;  // bounds are required for POSITION only
+    if constexpr (!std::is_arithmetic_v<T>) {
       T lo = values[0], hi = values[0];
       for (const T& v : values) {
         lo = glm::min(lo, v);
@@ -109,20 +111,51 @@ Json material_json(const Material& m) {
   return j;
 }
 
-// One glTF mesh; one primitive per role (in order of first appearance) so roles survive.
-Json mesh_json(const Mesh& mesh, BinBuilder& bin) {
+// Unit length; a zero or non-finite vector falls back to `fallback`, then to +Z.
+glm::vec3 unit_normal(const glm::vec3& n, const glm::vec3* fallback) {
+  const float len = glm::length(n);
+  if (len > 0.0f && std::isfinite(len)) return n / len;
+  if (fallback) return unit_normal(*fallback, nullptr);
+  return glm::vec3(0, 0, 1);
+}
+
+// One glTF mesh; one primitive per role (in order of first appearance) so roles survive. The
+// primitives share the vertex accessors, so per-vertex data stays indexed by mesh vertex.
+// `normals` / `ka` replace the mesh's own when not null.
+Json mesh_json(const Mesh& mesh, BinBuilder& bin, const std::vector<glm::vec3>* normals,
+               const std::vector<float>* ka) {
   const size_t nv = mesh.positions.size();
   Json attributes = {{"POSITION", bin.attribute(mesh.positions, "VEC3", true)}};
-  if (mesh.normals.size() == nv) {
+  const bool own_normals = mesh.normals.size() == nv;
+  if (normals) {
+    SYLVA_CHECK(normals->size() == nv, "write_glb: normal count != vertex count");
     std::vector<glm::vec3> unit(nv);
-    for (size_t v = 0; v < nv; ++v) {
-      const float len = glm::length(mesh.normals[v]);
-      unit[v] = len > 0.0f && std::isfinite(len) ? mesh.normals[v] / len : glm::vec3(0, 0, 1);
-    }
+    for (size_t v = 0; v < nv; ++v)
+      unit[v] = unit_normal((*normals)[v], own_normals ? &mesh.normals[v] : nullptr);
+    attributes["NORMAL"] = bin.attribute(unit, "VEC3");
+  } else if (own_normals) {
+    std::vector<glm::vec3> unit(nv);
+    for (size_t v = 0; v < nv; ++v)
+      unit[v] = unit_normal(mesh.normals[v], nullptr);
     attributes["NORMAL"] = bin.attribute(unit, "VEC3");
   }
   if (mesh.uvs.size() == nv) attributes["TEXCOORD_0"] = bin.attribute(mesh.uvs, "VEC2");
-  if (mesh.colors.size() == nv) attributes["COLOR_0"] = bin.attribute(mesh.colors, "VEC4");
+  const bool own_colors = mesh.colors.size() == nv;
+  if (!ka && mesh.ka.size() == nv) ka = &mesh.ka;
+  if (ka) {
+    SYLVA_CHECK(ka->size() == nv, "write_glb: ka count != vertex count");
+    std::vector<glm::vec3> preview(nv);
+    for (size_t v = 0; v < nv; ++v) {
+      const float k = (*ka)[v];
+      SYLVA_CHECK(k >= 0.0f && k <= 1.0f, "write_glb: ka outside [0, 1]");
+      preview[v] = own_colors ? glm::vec3(mesh.colors[v]) * k : glm::vec3(k);
+    }
+    attributes["COLOR_0"] = bin.attribute(preview, "VEC3");
+    if (own_colors) attributes["COLOR_1"] = bin.attribute(mesh.colors, "VEC4");
+    attributes["_AMBIENT"] = bin.attribute(*ka, "SCALAR");
+  } else if (own_colors) {
+    attributes["COLOR_0"] = bin.attribute(mesh.colors, "VEC4");
+  }
 
   const size_t nt = mesh.triangle_count();
   const bool has_roles = mesh.roles.size() == nt;
@@ -151,19 +184,28 @@ Json mesh_json(const Mesh& mesh, BinBuilder& bin) {
     primitives.push_back(prim);
   }
   Json j = {{"name", mesh.name}, {"primitives", primitives}};
-  if (has_roles && order.size() == 1) j["extras"] = {{"sylva_role", role_name(order[0])}};
+  if (has_roles && order.size() == 1) j["extras"]["sylva_role"] = role_name(order[0]);
+  if (ka) j["extras"]["sylva_color_0"] = "ambient";
+  if (normals || mesh.outward_normals) j["extras"]["sylva_normals"] = "outward";
   return j;
 }
 
 }  // namespace
 
-void write_glb(const Scene& scene, const std::string& path) {
+void write_glb(const Scene& scene, const std::string& path, const GlbVertexData* extra) {
+  const size_t n = scene.meshes.size();
+  const bool new_normals = extra && !extra->normals.empty();
+  const bool new_ka = extra && !extra->ka.empty();
+  SYLVA_CHECK(!new_normals || extra->normals.size() == n, "write_glb: normals per mesh != meshes");
+  SYLVA_CHECK(!new_ka || extra->ka.size() == n, "write_glb: ka per mesh != meshes");
   BinBuilder bin;
   Json gltf = {{"asset", {{"version", "2.0"}, {"generator", "sylva"}}}};
   Json meshes = Json::array(), nodes = Json::array(), node_ids = Json::array();
-  for (const Mesh& mesh : scene.meshes) {
+  for (size_t m = 0; m < n; ++m) {
+    const Mesh& mesh = scene.meshes[m];
     if (mesh.positions.empty() || mesh.indices.size() < 3) continue;
-    meshes.push_back(mesh_json(mesh, bin));
+    meshes.push_back(mesh_json(mesh, bin, new_normals ? &extra->normals[m] : nullptr,
+                               new_ka ? &extra->ka[m] : nullptr));
     nodes.push_back({{"name", mesh.name}, {"mesh", meshes.size() - 1}});
     node_ids.push_back(nodes.size() - 1);
   }
@@ -173,6 +215,11 @@ void write_glb(const Scene& scene, const std::string& path) {
     scene_json["extras"]["sylva_hierarchy"] = {{"branch_parent", scene.hierarchy.branch_parent},
                                                {"branch_diameter", scene.hierarchy.branch_diameter},
                                                {"leaf_branch", scene.hierarchy.leaf_branch}};
+  }
+  if (extra && !extra->note_json.empty()) {
+    Json note = Json::parse(extra->note_json, nullptr, false);
+    SYLVA_CHECK(note.is_object(), "write_glb: note_json must be a JSON object");
+    scene_json["extras"]["sylva_baked"] = note;
   }
   gltf["scene"] = 0;
   gltf["scenes"] = Json::array({scene_json});

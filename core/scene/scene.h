@@ -48,6 +48,9 @@ struct Mesh {
   std::vector<float> ka;             // optional ambient coefficient in [0, 1] per vertex; when
                                      // present the renderer uses it, not the normal length
   std::vector<uint32_t> indices;     // 3 per triangle
+  // The foliage normals already face out of the crown on both sides of a leaf (realigned by
+  // Luft et al. §3.3, e.g. read from a baked file): the renderer never flips them on back faces.
+  bool outward_normals = false;
 
   // Per triangle. Ids are 1-based (0 means background in ID buffers).
   std::vector<uint32_t> primitive_ids;  // connected component (a leaf), unique in the scene

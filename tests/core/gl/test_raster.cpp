@@ -264,6 +264,27 @@ TEST(Raster, DoubleSidedBackFaceNormalFacesCamera) {
   EXPECT_EQ(cv::countNonZero(g.id), 0);
 }
 
+TEST(Raster, OutwardFoliageNormalsAreNotFlippedOnBackFaces) {
+  // A baked (realigned) leaf's normal points out of the crown whichever side is seen.
+  Material two_sided;
+  two_sided.double_sided = true;
+  Scene s = scene_of({make_quad(1.0f, 0.0f)}, two_sided);
+  set_ids(s.meshes[0], 1, 1, Role::Foliage);
+  s.meshes[0].outward_normals = true;
+  Rasterizer r(gl());
+  r.upload(s);
+  const GBuffer g = r.render(front_camera(s, 64, false, 180.0f), ambient_only(1),
+                             request_of(Target::Normal | Target::Id));
+  ASSERT_GT(cv::countNonZero(g.id), 64 * 64 / 4);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      if (g.id.at<int32_t>(y, x) != 0) {
+        ASSERT_LT(g.normal.at<cv::Vec3f>(y, x)[2], -0.99f);
+      }
+    }
+  }
+}
+
 TEST(Raster, ImageOrientationAndChannelOrder) {
   // Texture: top half red, bottom half blue; a quad raised above the centre of the view.
   Scene s = scene_of({make_quad(1.0f, 0.0f)});

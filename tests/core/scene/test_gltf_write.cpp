@@ -3,8 +3,10 @@
 // file behind.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -216,6 +218,128 @@ TEST(GltfWrite, FailureLeavesNothing) {
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     files += entry.is_regular_file();
   EXPECT_EQ(files, 0u);  // no temporary left behind
+}
+
+// Per-vertex data as `sylva bake` writes it: ka and replacement normals for every mesh.
+GlbVertexData baked_data(const Scene& s) {
+  GlbVertexData d;
+  for (const Mesh& m : s.meshes) {
+    std::vector<glm::vec3> normals;
+    std::vector<float> ka;
+    for (size_t v = 0; v < m.positions.size(); ++v) {
+      normals.push_back(glm::vec3(0.0f, 2.0f, float(v)));  // not unit: written unit
+      ka.push_back(0.25f + 0.125f * float(v % 7));
+    }
+    d.normals.push_back(normals);
+    d.ka.push_back(ka);
+  }
+  d.note_json = R"({"ka_min": 0.25})";
+  return d;
+}
+
+// The byte offset in the file of accessor `a`'s first element (tightly packed floats).
+size_t accessor_offset(const std::string& bytes, const Json& j, size_t a) {
+  uint32_t json_len = 0;
+  std::memcpy(&json_len, bytes.data() + 12, 4);
+  const Json& acc = j["accessors"][a];
+  const Json& view = j["bufferViews"][acc["bufferView"].get<size_t>()];
+  return 20 + json_len + 8 + view["byteOffset"].get<size_t>() + acc.value("byteOffset", size_t(0));
+}
+
+std::vector<float> accessor_floats(const std::string& bytes, const Json& j, size_t a) {
+  const Json& acc = j["accessors"][a];
+  const std::string type = acc["type"];
+  const size_t comps = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
+  std::vector<float> out(acc["count"].get<size_t>() * comps);
+  std::memcpy(out.data(), bytes.data() + accessor_offset(bytes, j, a), out.size() * 4);
+  return out;
+}
+
+TEST(GltfWrite, AmbientRoundTrip) {
+  const Scene in = small_scene();
+  const GlbVertexData data = baked_data(in);
+  const std::string path = test::temp_dir("ambient") + "/baked.glb";
+  write_glb(in, path, &data);
+
+  const std::string bytes = test::read_file(path);
+  uint32_t bin_length = 0;
+  const Json j = glb_json(bytes, bin_length);
+  EXPECT_EQ(j["scenes"][0]["extras"]["sylva_baked"]["ka_min"], 0.25);
+  ASSERT_EQ(j["meshes"].size(), in.meshes.size());
+  for (size_t m = 0; m < in.meshes.size(); ++m) {
+    const Json& mesh = j["meshes"][m];
+    EXPECT_EQ(mesh["extras"]["sylva_color_0"], "ambient");
+    for (const Json& prim : mesh["primitives"]) {  // the mixed mesh has two, sharing attributes
+      const Json& at = prim["attributes"];
+      EXPECT_EQ(j["accessors"][at["_AMBIENT"].get<size_t>()]["type"], "SCALAR");
+      EXPECT_EQ(j["accessors"][at["COLOR_0"].get<size_t>()]["type"], "VEC3");
+      const std::vector<float> ka = accessor_floats(bytes, j, at["_AMBIENT"]);
+      const std::vector<float> c0 = accessor_floats(bytes, j, at["COLOR_0"]);
+      const std::vector<float> c1 = accessor_floats(bytes, j, at["COLOR_1"]);
+      const std::vector<float> n = accessor_floats(bytes, j, at["NORMAL"]);
+      EXPECT_EQ(ka, data.ka[m]);
+      for (size_t v = 0; v < ka.size(); ++v) {
+        const glm::vec4 own = in.meshes[m].colors[v];
+        EXPECT_EQ(glm::vec4(c1[4 * v], c1[4 * v + 1], c1[4 * v + 2], c1[4 * v + 3]), own);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_FLOAT_EQ(c0[3 * v + size_t(c)], own[c] * ka[v]);  // colour x ka
+        const glm::vec3 nv(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+        EXPECT_NEAR(glm::length(nv), 1.0f, 1e-6f);
+        EXPECT_NEAR(glm::length(nv - glm::normalize(data.normals[m][v])), 0.0f, 1e-6f);
+      }
+    }
+  }
+
+  // Back in Sylva: ka from _AMBIENT, the real colours from COLOR_1, the baked normals.
+  const Scene out = load_scene(path);
+  ASSERT_EQ(out.meshes.size(), 4u);  // the mixed mesh reads back as one mesh per role
+  const size_t source[4] = {0, 1, 2, 2};
+  for (size_t m = 0; m < 4; ++m) {
+    const Mesh& a = in.meshes[source[m]];
+    const Mesh& b = out.meshes[m];
+    EXPECT_EQ(b.ka, data.ka[source[m]]) << b.name;
+    EXPECT_TRUE(b.outward_normals) << b.name;
+    EXPECT_EQ(b.colors, a.colors) << b.name;
+    for (size_t v = 0; v < b.normals.size(); ++v)
+      EXPECT_NEAR(glm::length(b.normals[v] - glm::normalize(data.normals[source[m]][v])), 0.0f,
+                  1e-6f);
+  }
+
+  // A scene that carries ka writes it again without extra data: baked files survive a rewrite.
+  const std::string again = test::temp_dir("ambient") + "/again.glb";
+  write_glb(out, again);
+  const Scene twice = load_scene(again);
+  for (size_t m = 0; m < 4; ++m) {
+    EXPECT_EQ(twice.meshes[m].ka, out.meshes[m].ka);
+    EXPECT_EQ(twice.meshes[m].colors, out.meshes[m].colors);
+  }
+}
+
+TEST(GltfWrite, AmbientOutsideUnitRangeIsInputError) {
+  const Scene in = small_scene();
+  const GlbVertexData data = baked_data(in);
+  const std::string dir = test::temp_dir("ambient-bad");
+  write_glb(in, dir + "/good.glb", &data);
+  const std::string good = test::read_file(dir + "/good.glb");
+  uint32_t bin_length = 0;
+  const Json j = glb_json(good, bin_length);
+  const size_t at =
+      accessor_offset(good, j, j["meshes"][1]["primitives"][0]["attributes"]["_AMBIENT"]);
+  for (float bad : {1.5f, -0.25f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + at + 4, &bad, 4);  // vertex 1 of mesh "leaves"
+    const std::string path = dir + "/bad.glb";
+    test::write_file(path, bytes);
+    try {
+      load_scene(path);
+      FAIL() << "accepted _AMBIENT " << bad;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path, 0), 0u) << what;  // names the file first
+      EXPECT_NE(what.find("_AMBIENT"), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,218 @@
+// sylva tradeoff SCENE --study foliage -o STUDY.csv [--plot STUDY.png] [--fractions LIST]
+//   [--grids LIST] [--normal-sources LIST] [--encodings LIST] [--reference-grid N] [--quiet]
+//   [scene options] [--rho --tau --ka-min --d-min --exponent --blend --smooth --decimate
+//   --per-triangle]
+// Measures a speed/accuracy trade against a reference the program computes itself
+// (DESIGN.md §5): for now the Luft et al. foliage preprocessing (npr/foliage_study.h).
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/common_options.h"
+#include "cli/illumination_options.h"
+#include "core/error.h"
+#include "core/io/atomic_file.h"
+#include "core/io/image_io.h"
+#include "core/progress.h"
+#include "npr/foliage_study.h"
+
+namespace sylva::cli {
+
+namespace {
+
+// The studies `--study` accepts; `ao` and `keyframes` are planned.
+const char* const kStudies = "foliage";
+
+// "a,b,c" → {"a", "b", "c"}; empty items are errors.
+std::vector<std::string> split_list(const std::string& text, const std::string& where) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    out.push_back(item);
+  if (!text.empty() && text.back() == ',') out.emplace_back();
+  for (const std::string& item : out)
+    if (item.empty())
+      throw InputError(where, "expected a comma-separated list, got '" + text + "'");
+  if (out.empty()) throw InputError(where, "name at least one value");
+  return out;
+}
+
+template <typename T>
+std::vector<T> parse_numbers(const std::string& text, const std::string& where) {
+  std::vector<T> out;
+  for (const std::string& item : split_list(text, where)) {
+    T v{};
+    const char* end = item.data() + item.size();
+    auto [p, ec] = std::from_chars(item.data(), end, v);
+    if (ec != std::errc() || p != end)
+      throw InputError(where, "'" + item + "' is not a number (in '" + text + "')");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<NormalSource> parse_normal_sources(const std::string& text) {
+  std::vector<NormalSource> out;
+  for (const std::string& n : split_list(text, "--normal-sources")) {
+    if (n == "surface")
+      out.push_back(NormalSource::Surface);
+    else if (n == "gradient")
+      out.push_back(NormalSource::Gradient);
+    else
+      throw InputError("--normal-sources",
+                       "unknown value '" + n + "' (allowed: surface, gradient)");
+  }
+  return out;
+}
+
+std::vector<KaEncoding> parse_encodings(const std::string& text) {
+  std::vector<KaEncoding> out;
+  for (const std::string& n : split_list(text, "--encodings")) {
+    if (n == "length")
+      out.push_back(KaEncoding::Length);
+    else if (n == "attribute")
+      out.push_back(KaEncoding::Attribute);
+    else
+      throw InputError("--encodings", "unknown value '" + n + "' (allowed: length, attribute)");
+  }
+  return out;
+}
+
+std::string cell(const std::optional<double>& v, const char* fmt) {
+  if (!v) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, fmt, *v);
+  return buf;
+}
+
+// One line per preprocessing run; the encodings' interior ka errors side by side.
+void print_table(const FoliageStudy& study, const std::vector<KaEncoding>& encodings) {
+  std::printf("%-8s %5s %-8s %10s %9s %9s %9s %9s", "fraction", "grid", "normals", "generators",
+              "seconds", "mean_deg", "p95_deg", "ka_rmse");
+  for (KaEncoding e : encodings)
+    std::printf(" %*s", e == KaEncoding::Length ? 13 : 16,
+                (std::string("ka_int_") + ka_encoding_name(e)).c_str());
+  std::printf("\n");
+  for (size_t i = 0; i < study.rows.size(); i += encodings.size()) {
+    const FoliageStudyRow& r = study.rows[i];
+    std::printf("%-8g %5d %-8s", r.fraction, r.grid, normal_source_name(r.normals));
+    if (!r.error.empty()) {
+      std::printf(" failed: %s\n", r.error.c_str());
+      continue;
+    }
+    std::printf(" %10zu %9s %9s %9s %9s", r.generators.value_or(0), cell(r.seconds, "%.3f").c_str(),
+                cell(r.normal_mean_deg, "%.3f").c_str(), cell(r.normal_p95_deg, "%.3f").c_str(),
+                cell(r.ka_rmse, "%.5f").c_str());
+    for (size_t e = 0; e < encodings.size(); ++e)
+      std::printf(" %*s", encodings[e] == KaEncoding::Length ? 13 : 16,
+                  cell(study.rows[i + e].ka_interior_rmse, "%.5f").c_str());
+    std::printf("%s\n", r.reference ? "  (reference)" : "");
+  }
+}
+
+}  // namespace
+
+Action add_tradeoff_command(CLI::App& app) {
+  struct Opts {
+    SceneOptions scene;
+    IlluminationOptions illumination;
+    std::string study, out, plot;
+    std::string fractions = "1,0.5,0.25,0.1,0.05,0.01";
+    std::string grids = "32,64,128,256";
+    std::string normal_sources = "surface,gradient";
+    std::string encodings = "length,attribute";
+    int reference_grid = 256;
+    std::string thresholds = "scaled";
+    bool quiet = false;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = app.add_subcommand(
+      "tradeoff",
+      "Measure speed against accuracy over a parameter sweep, against a reference the "
+      "program computes (CSV and a plot)");
+  add_scene_options(*cmd, o->scene);
+  // The Luft options that stay fixed over the sweep; fraction, grid, normal source and
+  // encoding are the sweep's own lists below, and every run is computed, never cached.
+  add_illumination_options(*cmd, o->illumination);
+  for (const char* name : {"--fraction", "--grid", "--normal-source", "--ka-encoding",
+                           "--surface-out", "--no-cache", "--cache-dir"})
+    if (CLI::Option* opt = cmd->get_option_no_throw(name)) cmd->remove_option(opt);
+  cmd->add_option("--study", o->study, std::string("What to study: ") + kStudies)->required();
+  cmd->add_option("-o,--output", o->out, "Output table (.csv)")->required();
+  cmd->add_option("--plot", o->plot, "Also draw error against time (.png)");
+  cmd->add_option("--fractions", o->fractions,
+                  "Shares of leaves used as generators, comma-separated, each in (0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--grids", o->grids,
+                  "Marching-cubes cells along the longest axis, comma-separated, each in [2, "
+                  "1024]")
+      ->capture_default_str();
+  cmd->add_option("--normal-sources", o->normal_sources, "surface and/or gradient")
+      ->capture_default_str();
+  cmd->add_option("--encodings", o->encodings, "length and/or attribute (ka encodings)")
+      ->capture_default_str();
+  cmd->add_option("--reference-grid", o->reference_grid,
+                  "The reference's grid, [2, 1024]; raised to the largest of --grids")
+      ->capture_default_str();
+  cmd->add_option("--thresholds", o->thresholds,
+                  "tau and d-min of a run with fewer generators: scaled (the reference's times "
+                  "the share of generators, matching the expected density) or fixed (the "
+                  "reference's)")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
+  return [o] {
+    if (o->study != "foliage")
+      throw InputError("--study", "unknown study '" + o->study + "' (allowed: " + kStudies + ")");
+    check_output_path("--output", o->out, {".csv"});
+    if (!o->plot.empty()) check_output_path("--plot", o->plot, {".png"});
+
+    // Every option is checked before the scene is loaded. illumination_setup only keeps a
+    // pointer to the scene, so an empty one serves for parsing.
+    const Scene no_scene;
+    FoliageStudyOptions so;
+    so.base = illumination_setup(o->illumination, o->scene.seed, no_scene).params;
+    so.fractions = parse_numbers<double>(o->fractions, "--fractions");
+    so.grids = parse_numbers<int>(o->grids, "--grids");
+    so.normals = parse_normal_sources(o->normal_sources);
+    so.encodings = parse_encodings(o->encodings);
+    so.reference_grid = o->reference_grid;
+    if (o->thresholds != "scaled" && o->thresholds != "fixed")
+      throw InputError("--thresholds",
+                       "unknown value '" + o->thresholds + "' (allowed: scaled, fixed)");
+    so.scale_thresholds = o->thresholds == "scaled";
+    try {
+      validate_foliage_study(so);
+    } catch (const InputError& e) {
+      throw InputError("--" + e.where(), std::string(e.what()).substr(e.where().size() + 2));
+    }
+
+    const Scene scene = load_scene_for_cli(o->scene);
+    FoliageStudy study;
+    {
+      ProgressOptions po;
+      po.quiet = o->quiet;
+      Progress progress("foliage study", foliage_study_runs(so), po);
+      so.on_run = [&progress](const std::string& what) { progress.step(what); };
+      study = run_foliage_study(scene, so);
+    }
+    const std::string name = std::filesystem::path(o->scene.path).stem().string();
+    const std::string csv = foliage_study_csv(study);
+    cv::Mat plot;
+    if (!o->plot.empty()) plot = plot_foliage_study(study, name);
+    write_file_atomic(o->out, csv);
+    if (!o->plot.empty()) write_image(o->plot, plot);
+
+    std::printf("%s: %zu leaves; reference %.2f s (rho %.4g, tau %.4g, d_min %.4g)\n", name.c_str(),
+                study.reference.leaves, study.reference_seconds, study.reference.rho,
+                study.reference.tau, study.reference.d_min);
+    print_table(study, so.encodings);
+    std::printf("wrote %s (%zu rows)%s%s\n", o->out.c_str(), study.rows.size(),
+                o->plot.empty() ? "" : " and ", o->plot.c_str());
+  };
+}
+
+}  // namespace sylva::cli

@@ -1,0 +1,553 @@
+#include "npr/foliage_study.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "core/error.h"
+#include "npr/generators.h"
+
+namespace sylva {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+// What the comparison needs from the reference, computed once.
+struct Reference {
+  const FoliageIllumination& result;
+  std::vector<std::vector<char>> foliage;  // per mesh, per vertex: used by a foliage triangle
+  std::vector<double> interior_ka;         // per triangle of every mesh: interpolated ka
+};
+
+Reference make_reference(const Scene& scene, const FoliageIllumination& r) {
+  Reference ref{r, {}, {}};
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& m = scene.meshes[mi];
+    std::vector<char>& f = ref.foliage.emplace_back(m.positions.size(), 0);
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      double sum = 0;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = m.indices[3 * t + k];
+        sum += r.ka[mi][v];
+        if (m.roles[t] == Role::Foliage) f[v] = 1;
+      }
+      ref.interior_ka.push_back(sum / 3.0);
+    }
+  }
+  return ref;
+}
+
+// Angle between two directions in degrees; atan2 keeps identical vectors at exactly 0 and is
+// accurate for small angles, where acos of the dot product is not.
+double angle_deg(const glm::vec3& a, const glm::vec3& b) {
+  const glm::dvec3 da(a), db(b);
+  return std::atan2(glm::length(glm::cross(da, db)), glm::dot(da, db)) * (180.0 / std::numbers::pi);
+}
+
+// The nearest-rank q-quantile of v (not empty); reorders v.
+double quantile(std::vector<double>& v, double q) {
+  const size_t rank = size_t(std::ceil(q * double(v.size())));
+  const size_t k = std::min(v.size() - 1, rank == 0 ? 0 : rank - 1);
+  std::nth_element(v.begin(), v.begin() + long(k), v.end());
+  return v[k];
+}
+
+// Fills the error columns of `row` for `run` against the reference.
+void compare(const Scene& scene, const Reference& ref, const FoliageIllumination& run,
+             KaEncoding encoding, FoliageStudyRow& row) {
+  std::vector<double> angles;
+  double ka_sq = 0;
+  size_t vertices = 0;
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi)
+    for (size_t v = 0; v < scene.meshes[mi].positions.size(); ++v) {
+      if (ref.foliage[mi][v])
+        angles.push_back(angle_deg(run.normals[mi][v], ref.result.normals[mi][v]));
+      const double d = double(run.ka[mi][v]) - double(ref.result.ka[mi][v]);
+      ka_sq += d * d;
+      ++vertices;
+    }
+  double sum = 0;
+  for (double a : angles)
+    sum += a;
+  row.normal_mean_deg = angles.empty() ? 0.0 : sum / double(angles.size());
+  row.normal_p95_deg = angles.empty() ? 0.0 : quantile(angles, 0.95);
+  row.ka_rmse = vertices == 0 ? 0.0 : std::sqrt(ka_sq / double(vertices));
+
+  // The renderer's view of ka inside each triangle, at its centroid (Luft §3.2: with the
+  // length encoding the interpolated normal's length is what gets decoded).
+  double interior_sq = 0;
+  size_t t_all = 0;
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& m = scene.meshes[mi];
+    for (size_t t = 0; t < m.triangle_count(); ++t, ++t_all) {
+      double seen = 0;
+      if (encoding == KaEncoding::Attribute) {
+        for (int k = 0; k < 3; ++k)
+          seen += run.ka[mi][m.indices[3 * t + k]];
+        seen /= 3.0;
+      } else {
+        glm::dvec3 n(0.0);
+        for (int k = 0; k < 3; ++k) {
+          const uint32_t v = m.indices[3 * t + k];
+          n += glm::dvec3(encode_ka(run.normals[mi][v], run.ka[mi][v]));
+        }
+        seen = std::clamp(glm::length(n / 3.0), 0.0, 1.0);
+      }
+      const double d = seen - ref.interior_ka[t_all];
+      interior_sq += d * d;
+    }
+  }
+  row.ka_interior_rmse = t_all == 0 ? 0.0 : std::sqrt(interior_sq / double(t_all));
+}
+
+std::string describe_run(double fraction, int grid, NormalSource n) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "fraction %g, grid %d, %s", fraction, grid, normal_source_name(n));
+  return buf;
+}
+
+}  // namespace
+
+const char* normal_source_name(NormalSource s) {
+  return s == NormalSource::Surface ? "surface" : "gradient";
+}
+
+const char* ka_encoding_name(KaEncoding e) {
+  return e == KaEncoding::Length ? "length" : "attribute";
+}
+
+void validate_foliage_study(const FoliageStudyOptions& o) {
+  if (o.fractions.empty()) throw InputError("fractions", "name at least one fraction in (0, 1]");
+  for (double f : o.fractions)
+    if (!(f > 0.0 && f <= 1.0))
+      throw InputError("fractions", "each must be in (0, 1], got " + format("%g", f));
+  if (o.grids.empty()) throw InputError("grids", "name at least one grid in [2, 1024] cells");
+  for (int g : o.grids)
+    if (g < 2 || g > 1024)
+      throw InputError("grids", "each must be in [2, 1024] cells, got " + std::to_string(g));
+  if (o.normals.empty())
+    throw InputError("normal-sources", "name at least one of surface, gradient");
+  if (o.encodings.empty()) throw InputError("encodings", "name at least one of length, attribute");
+  if (o.reference_grid < 2 || o.reference_grid > 1024)
+    throw InputError("reference-grid",
+                     "must be in [2, 1024] cells, got " + std::to_string(o.reference_grid));
+  FoliageParams p = o.base;
+  p.fraction.reset();
+  p.grid = o.reference_grid;
+  validate_foliage_params(p);
+}
+
+size_t foliage_study_runs(const FoliageStudyOptions& o) {
+  return 1 + o.fractions.size() * o.grids.size() * o.normals.size();
+}
+
+FoliageStudy run_foliage_study(const Scene& scene, const FoliageStudyOptions& o) {
+  validate_foliage_study(o);
+  FoliageStudy study;
+  study.reference_grid =
+      std::max(o.reference_grid, *std::max_element(o.grids.begin(), o.grids.end()));
+  study.scaled_thresholds = o.scale_thresholds;
+
+  // Reference: all generators, the finest grid, nearest-surface normals (Luft §3.1, §3.3).
+  FoliageParams rp = o.base;
+  rp.fraction = 1.0;
+  rp.grid = study.reference_grid;
+  rp.normals = NormalSource::Surface;
+  auto t0 = Clock::now();
+  const FoliageIllumination reference = compute_foliage_illumination(scene, rp);
+  study.reference_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  study.reference = reference.stats;
+  if (o.on_run) o.on_run("reference: " + describe_run(1.0, rp.grid, rp.normals));
+  const Reference ref = make_reference(scene, reference);
+
+  // Every run uses the reference's resolved rho, tau and d_min.
+  FoliageParams base = o.base;
+  base.rho = SceneLength{SceneLength::Kind::Absolute, study.reference.rho};
+  base.tau = float(study.reference.tau);
+  base.ambient.d_min = float(study.reference.d_min);
+  base.d_min_auto = false;
+
+  for (double fraction : o.fractions)
+    for (int grid : o.grids)
+      for (NormalSource normals : o.normals) {
+        FoliageStudyRow row;
+        row.fraction = fraction;
+        row.grid = grid;
+        row.normals = normals;
+        row.reference =
+            fraction == 1.0 && grid == study.reference_grid && normals == NormalSource::Surface;
+        FoliageParams p = base;
+        if (o.scale_thresholds) {
+          // The share actually kept (make_generators rounds and keeps at least one), not
+          // the nominal fraction; counting them costs a pass over the foliage, untimed.
+          GeneratorOptions go{fraction, p.per_triangle, p.seed};
+          const double share = double(make_generators(scene, go).size()) /
+                               double(std::max<size_t>(study.reference.generators, 1));
+          p.tau = float(study.reference.tau * share);
+          p.ambient.d_min = std::max(float(study.reference.d_min * share), 1e-30f);
+        }
+        row.tau = *p.tau;
+        row.d_min = p.ambient.d_min;
+        p.fraction = fraction;
+        p.grid = grid;
+        p.normals = normals;
+        std::optional<FoliageIllumination> run;
+        try {
+          t0 = Clock::now();
+          run = compute_foliage_illumination(scene, p);
+          row.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+          row.generators = run->stats.generators;
+        } catch (const InputError& e) {
+          row.error = e.what();
+          std::replace(row.error.begin(), row.error.end(), '\n', ' ');
+        }
+        for (KaEncoding encoding : o.encodings) {
+          row.encoding = encoding;
+          if (run) compare(scene, ref, *run, encoding, row);
+          study.rows.push_back(row);
+        }
+        if (o.on_run) o.on_run(describe_run(fraction, grid, normals));
+      }
+  return study;
+}
+
+std::string foliage_study_csv(const FoliageStudy& study) {
+  std::string csv =
+      "fraction,grid,normals,encoding,reference,generators,tau,d_min,seconds,normal_mean_deg,"
+      "normal_p95_deg,ka_rmse,ka_interior_rmse,error\n";
+  auto num = [](const std::optional<double>& v, const char* fmt) {
+    return v && std::isfinite(*v) ? format(fmt, *v) : std::string();
+  };
+  for (const FoliageStudyRow& r : study.rows) {
+    std::string error;
+    if (!r.error.empty()) {
+      error = "\"";
+      for (char c : r.error)
+        error += c == '"' ? std::string("\"\"") : std::string(1, c);
+      error += "\"";
+    }
+    csv += format("%g", r.fraction) + "," + std::to_string(r.grid) + "," +
+           normal_source_name(r.normals) + "," + ka_encoding_name(r.encoding) + "," +
+           (r.reference ? "1" : "0") + "," +
+           (r.generators ? std::to_string(*r.generators) : std::string()) + "," +
+           format("%.6g", r.tau) + "," + format("%.6g", r.d_min) + "," + num(r.seconds, "%.4f") +
+           "," + num(r.normal_mean_deg, "%.6g") + "," + num(r.normal_p95_deg, "%.6g") + "," +
+           num(r.ka_rmse, "%.6g") + "," + num(r.ka_interior_rmse, "%.6g") + "," + error + "\n";
+  }
+  return csv;
+}
+
+// ---------------------------------------------------------------------------------------
+// The chart, drawn with imgproc (Debian's OpenCV has no plot module linked here).
+
+namespace {
+
+const cv::Scalar kBlack(0, 0, 0), kAxisGrey(90, 90, 90), kGridGrey(228, 228, 228),
+    kTextGrey(70, 70, 70);
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+// Per normal source a light and a dark end (BGR); grids get shades from light (coarse) to
+// dark (fine). Blues and oranges stay apart for colour-blind readers.
+cv::Scalar shade(NormalSource s, double t) {
+  const cv::Scalar light =
+      s == NormalSource::Surface ? cv::Scalar(225, 170, 90) : cv::Scalar(80, 165, 250);
+  const cv::Scalar dark =
+      s == NormalSource::Surface ? cv::Scalar(120, 45, 8) : cv::Scalar(5, 60, 170);
+  return light * (1.0 - t) + dark * t;
+}
+
+struct Painter {
+  cv::Mat& img;
+  double s;  // scale relative to 1200x800
+
+  int px(double v) const { return int(std::lround(v * s)); }
+  cv::Size text_size(const std::string& t, double size, int thick = 1) const {
+    int base = 0;
+    return cv::getTextSize(t, kFont, size * s, std::max(1, px(thick)), &base);
+  }
+  // Text anchored by `align` (0 left, 0.5 centre, 1 right) at the baseline y.
+  void text(const std::string& t, cv::Point p, double size, cv::Scalar c, double align = 0,
+            int thick = 1) const {
+    const cv::Size sz = text_size(t, size, thick);
+    cv::putText(img, t, {p.x - int(align * sz.width), p.y}, kFont, size * s, c,
+                std::max(1, px(thick)), cv::LINE_AA);
+  }
+  // Text turned 90 degrees counter-clockwise, centred on p.
+  void vertical_text(const std::string& t, cv::Point p, double size, cv::Scalar c) const {
+    const cv::Size sz = text_size(t, size);
+    cv::Mat strip(sz.height * 2, sz.width + 4, img.type(), cv::Scalar(255, 255, 255));
+    cv::putText(strip, t, {2, sz.height + sz.height / 2}, kFont, size * s, c, std::max(1, px(1)),
+                cv::LINE_AA);
+    cv::Mat turned;
+    cv::rotate(strip, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
+    cv::Rect r(p.x - turned.cols / 2, p.y - turned.rows / 2, turned.cols, turned.rows);
+    r &= cv::Rect(0, 0, img.cols, img.rows);
+    turned(cv::Rect(0, 0, r.width, r.height)).copyTo(img(r));
+  }
+  void marker(NormalSource src, cv::Point p, cv::Scalar c, int r) const {
+    if (src == NormalSource::Surface) {
+      cv::circle(img, p, r, c, cv::FILLED, cv::LINE_AA);
+      cv::circle(img, p, r, cv::Scalar(255, 255, 255), std::max(1, px(1)), cv::LINE_AA);
+    } else {
+      const int h = int(std::lround(r * 1.25));
+      std::vector<cv::Point> tri = {
+          {p.x, p.y - h}, {p.x - h, p.y + h * 3 / 4}, {p.x + h, p.y + h * 3 / 4}};
+      cv::fillConvexPoly(img, tri, c, cv::LINE_AA);
+      cv::polylines(img, tri, true, cv::Scalar(255, 255, 255), std::max(1, px(1)), cv::LINE_AA);
+    }
+  }
+};
+
+std::string tick_label(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// 1-2-5 ticks on a log axis inside [lo, hi]; every integer multiple when that gives fewer
+// than three.
+std::vector<double> log_ticks(double lo, double hi) {
+  for (const std::vector<int>& mult : {std::vector<int>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
+    std::vector<double> t;
+    for (int e = int(std::floor(std::log10(lo))); e <= int(std::ceil(std::log10(hi))); ++e)
+      for (int m : mult) {
+        const double v = m * std::pow(10.0, e);
+        if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) t.push_back(v);
+      }
+    if (t.size() >= 3 || mult.size() > 3) return t;
+  }
+  return {};
+}
+
+// A 1-2-5 step giving about `target` intervals over [0, hi].
+double nice_step(double hi, int target) {
+  const double raw = hi / target;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * mag >= raw) return m * mag;
+  return 10 * mag;
+}
+
+struct Point {
+  double seconds, value;
+  double fraction;
+  bool reference;
+};
+
+struct Series {
+  NormalSource normals;
+  int grid;
+  cv::Scalar colour;
+  std::vector<Point> points;
+};
+
+// One panel: axes, grid lines, ticks, labels, and the series.
+void draw_panel(const Painter& P, cv::Rect area, const std::string& title,
+                const std::string& y_label, double x_lo, double x_hi,
+                const std::vector<Series>& series, std::optional<double> lone_reference,
+                bool first_panel) {
+  double y_hi = 0;
+  for (const Series& s : series)
+    for (const Point& p : s.points)
+      y_hi = std::max(y_hi, p.value);
+  if (!(y_hi > 0)) y_hi = 1;
+  const double step = nice_step(y_hi * 1.03, 5);
+  y_hi = std::ceil(y_hi * 1.03 / step) * step;
+
+  const double lx0 = std::log10(x_lo), lx1 = std::log10(x_hi);
+  auto X = [&](double sec) {
+    return area.x + int(std::lround((std::log10(sec) - lx0) / (lx1 - lx0) * area.width));
+  };
+  auto Y = [&](double v) {
+    return area.y + area.height - int(std::lround(v / y_hi * area.height));
+  };
+
+  P.text(title, {area.x + area.width / 2, area.y - P.px(14)}, 0.6, kBlack, 0.5, 1);
+  for (double v = 0; v <= y_hi * (1 + 1e-9); v += step) {
+    const int y = Y(v);
+    cv::line(P.img, {area.x, y}, {area.x + area.width, y}, kGridGrey, 1, cv::LINE_AA);
+    cv::line(P.img, {area.x - P.px(5), y}, {area.x, y}, kAxisGrey, 1, cv::LINE_AA);
+    P.text(tick_label(std::abs(v) < step * 1e-6 ? 0.0 : v), {area.x - P.px(8), y + P.px(5)}, 0.45,
+           kTextGrey, 1.0);
+  }
+  for (double v : log_ticks(x_lo, x_hi)) {
+    const int x = X(v);
+    cv::line(P.img, {x, area.y}, {x, area.y + area.height}, kGridGrey, 1, cv::LINE_AA);
+    cv::line(P.img, {x, area.y + area.height}, {x, area.y + area.height + P.px(5)}, kAxisGrey, 1,
+             cv::LINE_AA);
+    P.text(tick_label(v), {x, area.y + area.height + P.px(22)}, 0.45, kTextGrey, 0.5);
+  }
+  cv::rectangle(P.img, area, kAxisGrey, 1, cv::LINE_AA);
+  P.text("preprocessing time, seconds (log scale)",
+         {area.x + area.width / 2, area.y + area.height + P.px(48)}, 0.5, kBlack, 0.5);
+  P.vertical_text(y_label, {area.x - P.px(first_panel ? 58 : 52), area.y + area.height / 2}, 0.5,
+                  kBlack);
+
+  // Lines first, markers over them, labels last so nothing hides them.
+  for (const Series& s : series)
+    for (size_t i = 1; i < s.points.size(); ++i)
+      cv::line(P.img, {X(s.points[i - 1].seconds), Y(s.points[i - 1].value)},
+               {X(s.points[i].seconds), Y(s.points[i].value)}, s.colour, P.px(2), cv::LINE_AA);
+  for (const Series& s : series)
+    for (const Point& p : s.points) {
+      if (p.reference)
+        cv::circle(P.img, {X(p.seconds), Y(p.value)}, P.px(11), kBlack, P.px(2), cv::LINE_AA);
+      P.marker(s.normals, {X(p.seconds), Y(p.value)}, s.colour, P.px(5));
+    }
+  // Fraction labels: the first of four spots around the point that overlaps no label drawn
+  // so far and stays inside the panel; none when all four do (points on top of each other).
+  std::vector<cv::Rect> taken;
+  for (const Series& s : series)
+    for (const Point& p : s.points) {
+      const std::string label = tick_label(p.fraction);
+      const cv::Size sz = P.text_size(label, 0.36);
+      const cv::Point c(X(p.seconds), Y(p.value));
+      const int d = P.px(7);
+      for (const cv::Point& at :
+           {cv::Point(c.x + d, c.y - d), cv::Point(c.x + d, c.y + d + sz.height),
+            cv::Point(c.x - d - sz.width, c.y - d),
+            cv::Point(c.x - d - sz.width, c.y + d + sz.height)}) {
+        const cv::Rect box(at.x - 1, at.y - sz.height - 1, sz.width + 2, sz.height + 3);
+        if ((box & area) != box || std::any_of(taken.begin(), taken.end(), [&](const cv::Rect& t) {
+              return (t & box).area() > 0;
+            }))
+          continue;
+        taken.push_back(box);
+        P.text(label, at, 0.36, s.colour * 0.8);
+        break;
+      }
+    }
+  if (lone_reference) {  // the reference's parameters are not in the sweep: show its time
+    const cv::Point p(X(*lone_reference), Y(0));
+    cv::circle(P.img, p, P.px(11), kBlack, P.px(2), cv::LINE_AA);
+    cv::circle(P.img, p, P.px(4), kBlack, cv::FILLED, cv::LINE_AA);
+    P.text("reference", {p.x, p.y - P.px(16)}, 0.42, kBlack, 0.5);
+  }
+}
+
+}  // namespace
+
+cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_name, int width,
+                           int height) {
+  SYLVA_CHECK(width >= 600 && width <= 4000 && height >= 400 && height <= 4000,
+              "plot size in [600, 4000] x [400, 4000]");
+  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const Painter P{img, std::min(width / 1200.0, height / 800.0)};
+
+  // One point per preprocessing run: the first encoding's row (time, normal and vertex ka
+  // errors do not depend on the encoding).
+  std::set<int> grids;
+  std::vector<NormalSource> sources;
+  size_t failed = 0;
+  for (const FoliageStudyRow& r : study.rows) {
+    grids.insert(r.grid);
+    if (std::find(sources.begin(), sources.end(), r.normals) == sources.end())
+      sources.push_back(r.normals);
+  }
+  std::vector<Series> normal_series, ka_series;
+  double t_lo = 1e30, t_hi = 0;
+  for (NormalSource src : sources) {
+    size_t gi = 0;
+    for (int grid : grids) {
+      const double t = grids.size() > 1 ? double(gi++) / double(grids.size() - 1) : 1.0;
+      Series sn{src, grid, shade(src, t), {}};
+      Series sk = sn;
+      std::set<double> seen;
+      for (const FoliageStudyRow& r : study.rows) {
+        if (r.normals != src || r.grid != grid || !seen.insert(r.fraction).second) continue;
+        if (!r.seconds || !r.normal_mean_deg || !r.ka_rmse) {
+          ++failed;
+          continue;
+        }
+        const double sec = std::max(*r.seconds, 1e-4);
+        t_lo = std::min(t_lo, sec);
+        t_hi = std::max(t_hi, sec);
+        sn.points.push_back({sec, *r.normal_mean_deg, r.fraction, r.reference});
+        sk.points.push_back({sec, *r.ka_rmse, r.fraction, r.reference});
+      }
+      if (!sn.points.empty()) {
+        normal_series.push_back(sn);
+        ka_series.push_back(sk);
+      }
+    }
+  }
+  std::optional<double> lone_reference;
+  if (std::none_of(study.rows.begin(), study.rows.end(),
+                   [](const FoliageStudyRow& r) { return r.reference && r.seconds; })) {
+    lone_reference = std::max(study.reference_seconds, 1e-4);
+    t_lo = std::min(t_lo, *lone_reference);
+    t_hi = std::max(t_hi, *lone_reference);
+  }
+  // Pad the time range by a tenth of its decades (at least a factor 1.25 each side).
+  const double pad = std::max(1.25, std::pow(t_hi / t_lo, 0.08));
+  const double x_lo = t_lo / pad, x_hi = t_hi * pad;
+
+  // Title and the reference's parameters.
+  P.text("Foliage preprocessing: error against time  -  " + scene_name, {width / 2, P.px(34)}, 0.8,
+         kBlack, 0.5, 2);
+  char sub[320];
+  std::snprintf(sub, sizeof sub,
+                "reference: all %zu generators, grid %d, surface normals: %.2f s;  rho %.4g, "
+                "tau %.4g, d_min %.4g",
+                study.reference.generators, study.reference_grid, study.reference_seconds,
+                study.reference.rho, study.reference.tau, study.reference.d_min);
+  P.text(sub, {width / 2, P.px(62)}, 0.48, kTextGrey, 0.5);
+  std::string sub2 = study.scaled_thresholds
+                         ? "every run: the reference's rho; its tau and d_min times the run's "
+                           "share of generators"
+                         : "every run: the reference's rho, tau and d_min";
+  if (failed) sub2 += ";  failed runs are left out (see the CSV)";
+  P.text(sub2, {width / 2, P.px(84)}, 0.48, kTextGrey, 0.5);
+
+  // Two panels side by side; the legend below them.
+  const int top = P.px(130), legend_h = P.px(40 + 26 * std::max<size_t>(1, sources.size()));
+  const int bottom = height - legend_h - P.px(62);
+  const int left = P.px(90), gap = P.px(100), right = P.px(30);
+  const int panel_w = (width - left - gap - right) / 2;
+  const cv::Rect a1(left, top, panel_w, bottom - top);
+  const cv::Rect a2(left + panel_w + gap, top, panel_w, bottom - top);
+  draw_panel(P, a1, "Foliage normals", "mean angle to the reference normal, degrees", x_lo, x_hi,
+             normal_series, lone_reference, true);
+  draw_panel(P, a2, "Ambient coefficient ka (per vertex)", "RMSE of ka against the reference", x_lo,
+             x_hi, ka_series, lone_reference, false);
+
+  // Legend: one row per normal source, one entry per grid.
+  int y = height - legend_h + P.px(6);
+  const int entry_w = P.px(190);
+  const int x0 = std::max(P.px(20), (width - int(grids.size() + 1) * entry_w) / 2);
+  for (NormalSource src : sources) {
+    P.text(std::string(normal_source_name(src)) + " normals:", {x0 + entry_w - P.px(12), y}, 0.5,
+           kBlack, 1.0);
+    size_t gi = 0;
+    for (int grid : grids) {
+      const double t = grids.size() > 1 ? double(gi) / double(grids.size() - 1) : 1.0;
+      const int x = x0 + int(gi + 1) * entry_w;
+      const cv::Scalar c = shade(src, t);
+      cv::line(img, {x, y - P.px(5)}, {x + P.px(36), y - P.px(5)}, c, P.px(2), cv::LINE_AA);
+      P.marker(src, {x + P.px(18), y - P.px(5)}, c, P.px(5));
+      P.text("grid " + std::to_string(grid), {x + P.px(44), y}, 0.48, kTextGrey);
+      ++gi;
+    }
+    y += P.px(26);
+  }
+  const int ry = y + P.px(4);
+  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kBlack, P.px(2), cv::LINE_AA);
+  P.text(
+      "the reference (zero error by definition);  small numbers: the share of leaves used as "
+      "generators (fraction)",
+      {x0 + P.px(36), ry}, 0.45, kTextGrey);
+  return img;
+}
+
+}  // namespace sylva

@@ -1,0 +1,96 @@
+// sylva tradeoff: a quick foliage sweep writes the CSV (header, one row per run and
+// encoding) and a PNG chart that decodes, with a progress line per run on a pipe; bad
+// studies and out-of-range lists exit 2 with one line and write nothing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "tests/test_support.h"
+
+namespace sylva::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+int count_lines(const std::string& s) {
+  int n = 0;
+  for (char c : s)
+    n += c == '\n';
+  return n;
+}
+
+const std::string& tradeoff_tree() {
+  static std::string path = [] {
+    std::string p = temp_dir("tradeoff-tree") + "/tree.glb";
+    RunResult r = run_sylva("sample tree --leaves 2000 --seed 3 -o " + p);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return p;
+  }();
+  return path;
+}
+
+TEST(Tradeoff, QuickFoliageSweep) {
+  const std::string dir = temp_dir("tradeoff");
+  const RunResult r = run_sylva("tradeoff " + tradeoff_tree() +
+                                " --study foliage --fractions 1,0.25 --grids 16,32 -o " + dir +
+                                "/study.csv --plot " + dir + "/study.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string csv = read_file(dir + "/study.csv");
+  EXPECT_EQ(csv.rfind("fraction,grid,normals,encoding,reference,generators,tau,d_min,seconds,"
+                      "normal_mean_deg,normal_p95_deg,ka_rmse,ka_interior_rmse,error\n",
+                      0),
+            0u)
+      << csv;
+  EXPECT_EQ(count_lines(csv), 1 + 2 * 2 * 2 * 2) << csv;  // fractions x grids x sources x enc.
+  EXPECT_EQ(csv.find("nan"), std::string::npos);
+  const cv::Mat plot = cv::imread(dir + "/study.png", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(plot.empty());
+  EXPECT_EQ(plot.cols, 1200);
+  EXPECT_EQ(plot.rows, 800);
+  // Progress on a pipe: one plain line per run (the reference and 8 sweep runs), no '\r'.
+  EXPECT_NE(r.output.find("foliage study 9/9  100%"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('\r'), std::string::npos);
+  EXPECT_NE(r.output.find("ka_int_attribute"), std::string::npos) << r.output;
+  for (const auto& e : fs::directory_iterator(dir))  // no temporary files left
+    EXPECT_TRUE(e.path().filename() == "study.csv" || e.path().filename() == "study.png")
+        << e.path();
+}
+
+TEST(Tradeoff, BadInputWritesNothing) {
+  const std::string dir = temp_dir("tradeoff-bad");
+  const std::string out = " -o " + dir + "/s.csv --plot " + dir + "/s.png";
+  const std::string base = "tradeoff " + tradeoff_tree() + out;
+  struct Case {
+    std::string args, needle;
+  };
+  for (const Case& c : std::vector<Case>{
+           {base + " --study ao", "allowed: foliage"},
+           {base + " --study foliage --fractions 0", "--fractions"},
+           {base + " --study foliage --fractions 1.5", "(0, 1]"},
+           {base + " --study foliage --fractions 1,,0.5", "--fractions"},
+           {base + " --study foliage --fractions half", "--fractions"},
+           {base + " --study foliage --grids 1", "[2, 1024]"},
+           {base + " --study foliage --grids 32,2000", "--grids"},
+           {base + " --study foliage --normal-sources normal", "--normal-sources"},
+           {base + " --study foliage --encodings rgb", "--encodings"},
+           {base + " --study foliage --thresholds half", "--thresholds"},
+           {base + " --study foliage --ka-min 2", "--ka-min"},
+           {"tradeoff " + tradeoff_tree() + " --study foliage -o " + dir + "/s.txt", "--output"},
+           {"tradeoff " + tradeoff_tree() + " --study foliage -o " + dir + "/s.csv --plot " + dir +
+                "/s.jpg",
+            "--plot"},
+           {"tradeoff " + tradeoff_tree() + out, "--study"},
+       }) {
+    const RunResult r = run_sylva(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(count_lines(r.output), 1) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("sylva: error: ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find(c.needle), std::string::npos)
+        << "expected '" << c.needle << "' in " << r.output;
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "an output was left behind";
+}
+
+}  // namespace
+}  // namespace sylva::test
