@@ -27,7 +27,8 @@ void add_illumination_options(CLI::App& cmd, IlluminationOptions& o, bool with_k
   add("--d-min", o.d_min, "Density where ka reaches ka-min: auto or > 0");
   add("--exponent", o.exponent, "Exponent n of Eq. 4, (0, 100]");
   if (with_ka_encoding)
-    add("--ka-encoding", o.ka_encoding, "length (in the normal, Luft) or attribute");
+    add("--ka-encoding", o.ka_encoding,
+        "attribute (a vertex attribute) or length (in the normal, as Luft et al.)");
   add("--smooth", o.smooth, "Laplacian smoothing passes on the surface, [0, 100]");
   add("--decimate", o.decimate, "Share of surface triangles kept, (0, 1]");
   cmd.add_flag("--per-triangle", o.per_triangle, "One generator per foliage triangle")

@@ -17,7 +17,7 @@ struct IlluminationOptions {
   std::string normal_source = "surface";
   float ka_min = 0.2f;
   float exponent = 1.0f;
-  std::string ka_encoding = "length";
+  std::string ka_encoding = "attribute";
   int smooth = 0;
   double decimate = 1.0;
   bool per_triangle = false;

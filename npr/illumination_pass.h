@@ -24,7 +24,7 @@ NormalMode parse_normal_mode(const std::string& text, const std::string& where);
 struct IlluminationSetup {
   const Scene* scene = nullptr;  // outlives execute()
   FoliageParams params;
-  KaEncoding encoding = KaEncoding::Length;
+  KaEncoding encoding = KaEncoding::Attribute;  // exact inside triangles (see sylva tradeoff)
   std::string surface_out;  // when set, the implicit surface is written there as .glb
   std::string cache_dir;    // result cache folder (npr/foliage_cache.h); empty = no cache
   std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty

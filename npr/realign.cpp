@@ -43,6 +43,15 @@ class NearestLowestIndex {
   using IndexType = uint32_t;
   using CountType = size_t;
 
+  // Starts from a known point and its distance (computed as nanoflann does: the squared
+  // differences summed x, y, z in double), so the search prunes from the first cell on; the
+  // answer is the same as without it.
+  void start_from(double dist, uint32_t index) {
+    m_found = true;
+    m_dist = dist;
+    m_index = index;
+  }
+
   bool addPoint(double dist, uint32_t index) {
     if (!m_found || dist < m_dist || (dist == m_dist && index < m_index)) {
       m_found = true;
@@ -102,18 +111,33 @@ std::vector<glm::vec3> nearest_surface_normals(const SurfaceMesh& surface,
   std::vector<glm::vec3> out(points.size());
   const int64_t n = static_cast<int64_t>(points.size());
   // Each iteration writes only out[i] and the tree is read-only: deterministic for any
-  // thread count.
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (int64_t i = 0; i < n; ++i) {
-    const glm::vec3& p = points[static_cast<size_t>(i)];
-    const double query[3] = {p.x, p.y, p.z};
-    NearestLowestIndex result;
-    tree.findNeighbors(result, query, nanoflann::SearchParams());
-    // Luft et al. §3.3: N' is the normal N_s of the surface vertex v_s nearest to v. A point
-    // with an infinite or NaN coordinate is equally far from every vertex (or incomparable):
-    // nothing is found and it takes vertex 0, the lowest index, as any full tie does.
-    const uint32_t nearest = result.found() ? result.index() : 0;
-    out[static_cast<size_t>(i)] = surface.normals[nearest];
+  // thread count. Consecutive points (a leaf's corners) are near each other, so each search
+  // starts from the previous one's answer: exact still, but deep points inside the crown,
+  // far from the surface, no longer wander through the tree's empty interior cells first.
+#pragma omp parallel
+  {
+    uint32_t hint = 0;
+#pragma omp for schedule(dynamic, 1024)
+    for (int64_t i = 0; i < n; ++i) {
+      const glm::vec3& p = points[static_cast<size_t>(i)];
+      const double query[3] = {p.x, p.y, p.z};
+      NearestLowestIndex result;
+      if (finite(p)) {
+        double d = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double diff = query[k] - static_cast<double>(surface.positions[hint][k]);
+          d += diff * diff;
+        }
+        result.start_from(d, hint);
+      }
+      tree.findNeighbors(result, query, nanoflann::SearchParams());
+      // Luft et al. §3.3: N' is the normal N_s of the surface vertex v_s nearest to v. A point
+      // with an infinite or NaN coordinate is equally far from every vertex (or incomparable):
+      // nothing is found and it takes vertex 0, the lowest index, as any full tie does.
+      const uint32_t nearest = result.found() ? result.index() : 0;
+      out[static_cast<size_t>(i)] = surface.normals[nearest];
+      hint = nearest;
+    }
   }
   return out;
 }

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Renders the demo gallery: the sample tree, bush and conifer and the shared fern in the
-# standard style, plus their G-buffer previews. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
+# standard and expressive styles (Luft et al.), their G-buffer previews, the normal buffers of
+# Luft Fig. 7 (original, realigned, realigned-scaled), a baked tree and the foliage trade-off
+# plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
 set -euo pipefail
 sylva=$1
 out=$2
@@ -13,9 +15,19 @@ scenes=("$out/tree.glb" "$out/bush.glb" "$out/conifer.glb" "$shared/assets/polyh
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .glb)
   "$sylva" render "$scene" --style standard --size 1024 --ssaa 2 -o "$out/$name-standard.png"
+  "$sylva" render "$scene" --style expressive --size 1024 --ssaa 2 --cache-dir "$out/cache" \
+    -o "$out/$name-expressive.png"
   "$sylva" buffers "$scene" --size 512 --out-dir "$out/$name-buffers" --id cluster
+  for normals in original realigned realigned-scaled; do
+    "$sylva" buffers "$scene" --size 512 --buffers normal --normals "$normals" \
+      --cache-dir "$out/cache" --out-dir "$out/$name-normals-$normals"
+  done
 done
+"$sylva" bake "$out/tree.glb" --cache-dir "$out/cache" -o "$out/tree-baked.glb"
+"$sylva" render "$out/tree-baked.glb" --size 1024 --ssaa 2 -o "$out/tree-baked-standard.png"
+"$sylva" tradeoff "$out/bush.glb" --study foliage --grids 32,64,128 -o "$out/bush-tradeoff.csv" \
+  --plot "$out/bush-tradeoff.png"
 echo
 echo "demo: the gallery is in $out/:"
 ls "$out"/*.png | sed 's/^/  /'
-echo "  and the buffer previews in $out/*-buffers/*.preview.png"
+echo "  and the buffer previews in $out/*-buffers/ and $out/*-normals-*/ (*.preview.png)"

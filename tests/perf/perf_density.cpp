@@ -8,7 +8,7 @@
 
 #include "npr/density_field.h"
 #include "npr/generators.h"
-#include "samples/plants.h"
+#include "tests/perf/perf_trees.h"
 
 namespace sylva {
 namespace {
@@ -16,27 +16,17 @@ namespace {
 constexpr float kRhoShare = 0.05f;
 constexpr float kTau = 0.5f;
 
-const Scene& tree(int leaves) {
-  static std::map<int, Scene> cache;
-  auto it = cache.find(leaves);
-  if (it != cache.end()) return it->second;
-  PlantOptions o;
-  o.kind = PlantKind::Tree;
-  o.leaves = leaves;
-  return cache.emplace(leaves, make_plant(o)).first->second;
-}
-
 const DensityField& field(int leaves) {
   static std::map<int, DensityField> cache;
   auto it = cache.find(leaves);
   if (it != cache.end()) return it->second;
-  const Scene& s = tree(leaves);
+  const Scene& s = perf::sample_tree(leaves);
   const float rho = kRhoShare * s.bounds(Role::Foliage).diagonal();
   return cache.emplace(leaves, DensityField(make_generators(s, {}), rho, kTau)).first->second;
 }
 
 void BM_Generators(benchmark::State& state) {
-  const Scene& s = tree(int(state.range(0)));
+  const Scene& s = perf::sample_tree(int(state.range(0)));
   size_t n = 0;
   for (auto _ : state) {
     std::vector<glm::vec3> g = make_generators(s, {});
@@ -55,7 +45,7 @@ BENCHMARK(BM_Generators)
 
 // Building the hash grid over the generators.
 void BM_BuildField(benchmark::State& state) {
-  const Scene& s = tree(int(state.range(0)));
+  const Scene& s = perf::sample_tree(int(state.range(0)));
   const std::vector<glm::vec3> gens = make_generators(s, {});
   const float rho = kRhoShare * s.bounds(Role::Foliage).diagonal();
   for (auto _ : state) {
@@ -92,7 +82,7 @@ BENCHMARK(BM_FillGrid)
 // Exact F at every foliage vertex, 2 threads (what per-vertex lookups cost without a grid).
 // Not run at 1M leaves: each query there sums ~75k candidates (~10 min per iteration).
 void BM_ValueAtVertices(benchmark::State& state) {
-  const Scene& s = tree(int(state.range(0)));
+  const Scene& s = perf::sample_tree(int(state.range(0)));
   const DensityField& f = field(int(state.range(0)));
   std::vector<const glm::vec3*> vertices;
   for (const Mesh& m : s.meshes)
