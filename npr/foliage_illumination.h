@@ -34,7 +34,7 @@ struct FoliageParams {
   // summed kernels at the generators, so the surface wraps nearly every leaf.
   std::optional<float> tau;
   // Share of leaves used as generators, (0, 1]; nullopt = auto: all of them up to a splat
-  // budget of 2^26 kernel evaluations at this grid, fewer beyond (Luft §3.1's speed-up).
+  // budget of 2^28 kernel evaluations at this grid, fewer beyond (Luft §3.1's speed-up).
   std::optional<double> fraction;
   bool per_triangle = false;  // one generator per foliage triangle instead of per leaf
   int grid = 128;             // marching-cubes cells along the longest axis, [2, 1024]
