@@ -110,12 +110,36 @@ std::string camera_json(const Camera& c) {
 
 }  // namespace
 
+// The style named by --style with the --set overrides and the foliage options given
+// explicitly on the command line applied (in that order); `io` receives the resulting foliage
+// settings with the run-only ones (--surface-out, cache) kept.
+std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& name,
+                                     const std::vector<std::string>& sets,
+                                     IlluminationOptions& io) {
+  auto style = std::make_unique<Style>(name, sets);
+  apply_explicit_illumination_options(cmd, style->set());
+  const IlluminationOptions run = io;
+  io = style->params().foliage;
+  io.surface_out = run.surface_out;
+  io.no_cache = run.no_cache;
+  io.cache_dir = run.cache_dir;
+  return style;
+}
+
+void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets) {
+  cmd.add_option("--style", style, "A built-in style (sylva styles) or a preset file .toml")
+      ->capture_default_str();
+  cmd.add_option("--set", sets,
+                 "Override a style parameter: section.key=value (repeatable; see sylva styles)");
+}
+
 Action add_render_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
     IlluminationOptions illumination;
     std::string style = "standard";
+    std::vector<std::string> sets;
     std::string out, graph;
   };
   auto o = std::make_shared<Opts>();
@@ -123,18 +147,24 @@ Action add_render_command(CLI::App& app) {
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
   add_illumination_options(*cmd, o->illumination);
-  cmd->add_option("--style", o->style, "Style name (see the README)")->capture_default_str();
+  add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   cmd->add_option("-o,--output", o->out, "Output image (.png or .jpg)")->required();
-  return [o] {
-    const StyleInfo& style = find_style(o->style);
+  return [o, cmd] {
+    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
     check_output_path("--output", o->out, {".png", ".jpg", ".jpeg"});
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view);
+    style->configure(frame->setup.request);
     RenderGraph graph;
     GBufferHandles gb =
-        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, style.normals);
-    int out = style.build(graph, gb);
+        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, style->normals());
+    StyleContext context;
+    context.lighting = frame->setup.lighting;
+    context.view = frame->setup.camera.view;
+    context.background = frame->setup.request.background;
+    context.foliage_diagonal = frame->scene.bounds(Role::Foliage).diagonal();
+    int out = style->build(graph, gb, context);
     graph.present(out);
     graph.compile();
     write_graph(o->graph, graph);
@@ -148,7 +178,7 @@ Action add_render_command(CLI::App& app) {
     }
     write_image(o->out, image);
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
-                style.name.c_str());
+                style->info().name.c_str());
   };
 }
 
@@ -158,6 +188,8 @@ Action add_buffers_command(CLI::App& app) {
     ViewOptions view;
     IlluminationOptions illumination;
     std::string normals = "original";
+    std::string style = "standard";
+    std::vector<std::string> sets;
     std::string dir, list = "color,normal,depth,position,id,ka", graph;
   };
   auto o = std::make_shared<Opts>();
@@ -166,17 +198,18 @@ Action add_buffers_command(CLI::App& app) {
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
   add_illumination_options(*cmd, o->illumination);
-  cmd->add_option("--normals", o->normals,
-                  "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
-                  "Fig. 7c)")
-      ->capture_default_str();
+  CLI::Option* normals =
+      cmd->add_option("--normals", o->normals,
+                      "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
+                      "Fig. 7c); default: the style's");
+  add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")->required();
-  cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka")
+  cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka,albedo")
       ->capture_default_str();
   cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")
       ->capture_default_str();
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
-  return [o] {
+  return [o, cmd, normals] {
     TargetMask wanted = 0;
     std::stringstream ss(o->list);
     for (std::string name; std::getline(ss, name, ',');) {
@@ -186,9 +219,12 @@ Action add_buffers_command(CLI::App& app) {
           wanted |= static_cast<TargetMask>(t);
           found = true;
         }
-      if (!found)
-        throw InputError("--buffers", "unknown buffer '" + name +
-                                          "' (allowed: color, normal, depth, position, id, ka)");
+      if (!found) {
+        std::string allowed;
+        for (Target t : kAllTargets)
+          allowed += (allowed.empty() ? "" : ", ") + std::string(target_name(t));
+        throw InputError("--buffers", "unknown buffer '" + name + "' (allowed: " + allowed + ")");
+      }
     }
     if (wanted == 0) throw InputError("--buffers", "name at least one buffer");
     fs::path dir(o->dir);
@@ -197,8 +233,11 @@ Action add_buffers_command(CLI::App& app) {
     if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
       throw InputError("--out-dir", "'" + o->dir + "': parent folder does not exist");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
-    const NormalMode mode = parse_normal_mode(o->normals, "--normals");
+    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+    const NormalMode mode =
+        normals->count() > 0 ? parse_normal_mode(o->normals, "--normals") : style->normals();
     auto frame = prepare_frame(o->scene, o->view);
+    frame->setup.request.flat_albedo = style->params().albedo == "flat";  // ids follow --id
     RenderGraph graph;
     GBufferHandles gb = add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode);
     for (Target t : kAllTargets)
@@ -215,8 +254,8 @@ Action add_buffers_command(CLI::App& app) {
       if (!has(wanted, t)) continue;
       const cv::Mat& m = graph.get<cv::Mat>(gb.of(t));
       std::string name = target_name(t);
-      if (t == Target::Color) {
-        write_image(path("color.png"), m);
+      if (t == Target::Color || t == Target::Albedo) {
+        write_image(path(name + ".png"), m);
         continue;
       }
       cv::Mat file = m, preview;

@@ -13,6 +13,7 @@ Action add_sample_command(CLI::App& app);
 Action add_info_command(CLI::App& app);
 Action add_render_command(CLI::App& app);
 Action add_buffers_command(CLI::App& app);
+Action add_styles_command(CLI::App& app);
 Action add_bake_command(CLI::App& app);
 Action add_tradeoff_command(CLI::App& app);
 

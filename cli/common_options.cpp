@@ -3,6 +3,7 @@
 #include <cmath>
 #include <regex>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/scene/load.h"
 #include "npr/leaf_clusters.h"
@@ -79,8 +80,7 @@ glm::vec4 parse_background(const std::string& s) {
                      "expected white, black, transparent or #RRGGBB, got '" + s + "'");
   unsigned v = std::stoul(s.substr(1), nullptr, 16);
   auto lin = [](unsigned c) {  // sRGB to linear, so '#808080' means the grey the user sees
-    float x = c / 255.0f;
-    return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+    return srgb_to_linear(c / 255.0f);
   };
   return {lin((v >> 16) & 255), lin((v >> 8) & 255), lin(v & 255), 1.0f};
 }

@@ -58,6 +58,18 @@ std::optional<double> auto_or_number(const std::string& text, const std::string&
 
 }  // namespace
 
+void apply_explicit_illumination_options(const CLI::App& cmd, ParamSet& set) {
+  for (const CLI::Option* opt : cmd.get_options()) {
+    const std::string key = foliage_key_of_option(opt->get_name());
+    if (key.empty() || opt->count() == 0) continue;
+    if (opt->get_expected_min() == 0) {
+      set.set_bool(key, true, opt->get_name());  // a flag
+    } else {
+      set.set_from_string(key, opt->as<std::string>(), opt->get_name());
+    }
+  }
+}
+
 IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed,
                                      const Scene& scene) {
   IlluminationSetup s;

@@ -10,23 +10,13 @@
 
 namespace sylva::cli {
 
-struct IlluminationOptions {
-  std::string rho = "auto", tau = "auto", fraction = "auto", d_min = "auto";
-  int grid = 128;
-  float blend = 1.0f;
-  std::string normal_source = "surface";
-  float ka_min = 0.2f;
-  float exponent = 1.0f;
-  std::string ka_encoding = "attribute";
-  int smooth = 0;
-  double decimate = 1.0;
-  bool per_triangle = false;
-  std::string surface_out;
-  bool no_cache = false;
-  std::string cache_dir;  // empty = default_cache_dir()
-};
+using IlluminationOptions = FoliageSettings;
 // with_ka_encoding = false leaves out --ka-encoding (for bake, which writes ka both ways).
 void add_illumination_options(CLI::App& cmd, IlluminationOptions& o, bool with_ka_encoding = true);
+
+// Copies the options of add_illumination_options given explicitly on `cmd` into `set`
+// (foliage.* keys), so they win over a preset; errors name the option.
+void apply_explicit_illumination_options(const CLI::App& cmd, ParamSet& set);
 
 // Parses and range-checks; seed comes from the scene options. Throws InputError naming the
 // option.

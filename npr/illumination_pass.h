@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/graph/render_graph.h"
+#include "core/params.h"
 #include "npr/foliage_illumination.h"
 
 namespace sylva {
@@ -20,6 +21,31 @@ enum class NormalMode {
 };
 // "original", "realigned", "realigned-scaled"; throws InputError(where, ...).
 NormalMode parse_normal_mode(const std::string& text, const std::string& where);
+
+// The preprocessing's parameters as a user gives them (CLI options, preset keys foliage.*):
+// text where "auto" or a relative length is allowed; parsed by cli::illumination_setup.
+struct FoliageSettings {
+  std::string rho = "auto", tau = "auto", fraction = "auto", d_min = "auto";
+  int grid = 128;
+  float blend = 1.0f;
+  std::string normal_source = "surface";
+  float ka_min = 0.2f;
+  float exponent = 1.0f;
+  std::string ka_encoding = "attribute";
+  int smooth = 0;
+  float decimate = 1.0f;
+  bool per_triangle = false;
+  // Not preset keys: where the run writes and caches.
+  std::string surface_out;
+  bool no_cache = false;
+  std::string cache_dir;  // empty = default_cache_dir()
+};
+
+// Binds the preset keys foliage.rho, .tau, .fraction, .grid, .blend, .normal_source, .ka_min,
+// .d_min, .exponent, .ka_encoding, .smooth, .decimate, .per_triangle with their ranges.
+void bind_foliage_params(ParamSet& set, FoliageSettings& s);
+// The preset key of a CLI option ("--ka-min" -> "foliage.ka_min"); "" if it has none.
+std::string foliage_key_of_option(const std::string& option);
 
 struct IlluminationSetup {
   const Scene* scene = nullptr;  // outlives execute()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders the demo gallery: the sample tree, bush and conifer and the shared fern in the
-# standard and expressive styles (Luft et al.), their G-buffer previews, the normal buffers of
+# standard, expressive (Luft et al.), ink, toon and watercolor styles, their G-buffer previews, the normal buffers of
 # Luft Fig. 7 (original, realigned, realigned-scaled), a baked tree and the foliage trade-off
 # plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
 set -euo pipefail
@@ -15,8 +15,10 @@ scenes=("$out/tree.glb" "$out/bush.glb" "$out/conifer.glb" "$shared/assets/polyh
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .glb)
   "$sylva" render "$scene" --style standard --size 1024 --ssaa 2 -o "$out/$name-standard.png"
-  "$sylva" render "$scene" --style expressive --size 1024 --ssaa 2 --cache-dir "$out/cache" \
-    -o "$out/$name-expressive.png"
+  for style in expressive ink toon watercolor; do
+    "$sylva" render "$scene" --style "$style" --size 1024 --ssaa 2 --cache-dir "$out/cache" \
+      -o "$out/$name-$style.png"
+  done
   "$sylva" buffers "$scene" --size 512 --out-dir "$out/$name-buffers" --id cluster
   for normals in original realigned realigned-scaled; do
     "$sylva" buffers "$scene" --size 512 --buffers normal --normals "$normals" \

@@ -1,36 +1,98 @@
 #include "styles/style.h"
 
 #include "core/error.h"
+#include "passes/background.h"
 
 namespace sylva {
 
-int build_standard(RenderGraph&, const GBufferHandles& gbuffer) {
+int build_shaded(RenderGraph&, const GBufferHandles& gbuffer, const StyleParams&,
+                 const StyleContext&) {
   return gbuffer.color;
 }
 
-int build_expressive(RenderGraph&, const GBufferHandles& gbuffer) {
-  return gbuffer.color;
+int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+               const StyleContext& context) {
+  if (params.toon.cast_shadows)
+    throw InputError("toon.cast_shadows",
+                     "shadow-map shadows are not available in the toon style yet; set it to false");
+  validate_toon_params(params.toon);
+  ToonResources r;
+  r.normal = gbuffer.normal;
+  r.albedo = gbuffer.albedo;
+  r.ka = gbuffer.ka;
+  r.position = gbuffer.position;
+  return add_background_pass(graph,
+                             add_toon_pass(graph, r, context.lighting, context.view, params.toon),
+                             context.background);
 }
 
-const std::vector<StyleInfo>& style_table() {
-  static const std::vector<StyleInfo> table = {
-      {"standard", "local illumination (Luft et al. Eq. 1) with the model's own normals",
-       &build_standard, NormalMode::Original},
-      {"expressive",
-       "Luft et al.: normals realigned to the foliage's implicit surface, ambient darkened by "
-       "the leaf density (Eq. 1, 4)",
-       &build_expressive, NormalMode::Realigned},
+int build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+              const StyleContext&) {
+  EdgeResources e;
+  e.normal = gbuffer.normal;
+  e.depth = gbuffer.depth;
+  e.id = gbuffer.id;
+  const int lines = add_edges_pass(graph, e, params.edges);
+  InkParams ink = params.ink;
+  ink.line_color = params.edges.color;
+  // The colour target is drawn on a transparent clear for ink (Style::configure), so its
+  // alpha is the coverage the composite needs, and its colour the wash.
+  return add_ink_composite_pass(graph, lines, gbuffer.color, ink);
+}
+
+int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                     const StyleContext& context) {
+  WatercolorParams p = params.watercolor;
+  p.reference_length = context.foliage_diagonal;
+  WatercolorResources r;
+  r.color = gbuffer.color;
+  r.albedo = gbuffer.albedo;
+  r.id = gbuffer.id;
+  r.depth = gbuffer.depth;
+  r.position = gbuffer.position;
+  return add_watercolor_pass(graph, r, glm::inverse(context.view), p);
+}
+
+const std::vector<StyleBuilder>& builder_table() {
+  static const std::vector<StyleBuilder> table = {
+      {"shaded", "local illumination (Luft et al. Eq. 1) from the raster pass", &build_shaded},
+      {"ink", "lines from depth, normal and id discontinuities over paper", &build_ink},
+      {"toon", "cartoon shading in k bands of N.L (Decaudin)", &build_toon},
+      {"watercolor", "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
+       &build_watercolor, IdKind::Cluster},
   };
   return table;
 }
 
-const StyleInfo& find_style(const std::string& name) {
+const StyleBuilder& find_builder(const std::string& name, const std::string& where) {
   std::string names;
-  for (const StyleInfo& s : style_table()) {
-    if (s.name == name) return s;
-    names += (names.empty() ? "" : ", ") + s.name;
+  for (const StyleBuilder& b : builder_table()) {
+    if (b.name == name) return b;
+    names += (names.empty() ? "" : ", ") + b.name;
   }
-  throw InputError("--style", "unknown style '" + name + "' (available: " + names + ")");
+  throw InputError(where, "unknown builder '" + name + "' (available: " + names + ")");
+}
+
+Style::Style(const std::string& name_or_path, const std::vector<std::string>& overrides) {
+  bind_style_params(m_set, m_params);
+  m_info = apply_preset(name_or_path, m_set);
+  for (const std::string& a : overrides)
+    apply_assignment(a, m_set, "--set");
+}
+
+NormalMode Style::normals() const {
+  return parse_normal_mode(m_params.normals, "style.normals");
+}
+
+void Style::configure(RasterRequest& request) const {
+  request.flat_albedo = m_params.albedo == "flat";
+  request.id_kind = find_builder(m_info.builder, m_info.source).ids;
+  if (m_info.builder == "ink") request.background.a = 0.0f;  // colour alpha = coverage
+}
+
+int Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,
+                 const StyleContext& context) const {
+  return find_builder(m_info.builder, m_info.source).build(graph, gbuffer, m_params, context);
 }
 
 }  // namespace sylva

@@ -1,34 +1,86 @@
-// The style table: each style wires passes onto the G-buffer resources of a render graph
-// and returns the resource holding its final image (CV_8UC4 BGRA). Later styles (ink, toon,
-// watercolor, blobs) add passes here without changing the graph.
+// Styles: a preset (styles/presets.h) names a builder and sets parameters (styles/
+// style_params.h); the builder wires image passes onto the G-buffer resources of a render
+// graph and returns the resource holding the final image (CV_8UC4 BGRA sRGB). The graph culls
+// every buffer and pass the style does not read (DESIGN.md §3).
 #pragma once
 
+#include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/gl/lights.h"
 #include "core/gl/raster_pass.h"
 #include "core/graph/render_graph.h"
+#include "core/params.h"
 #include "npr/illumination_pass.h"
+#include "styles/presets.h"
+#include "styles/style_params.h"
 
 namespace sylva {
 
-struct StyleInfo {
-  std::string name;
-  std::string description;
-  int (*build)(RenderGraph& graph, const GBufferHandles& gbuffer);
-  NormalMode normals = NormalMode::Original;  // what the raster pass draws with
+// What a builder may need besides the G-buffers: the frame's lights and camera.
+struct StyleContext {
+  Lighting lighting;
+  glm::mat4 view{1.0f};              // world -> view
+  glm::vec4 background{1, 1, 1, 0};  // linear RGBA (RasterRequest::background)
+  float foliage_diagonal = 0;        // scene units; 0 = unknown (scale of object-space noise)
 };
 
-const std::vector<StyleInfo>& style_table();
+struct StyleBuilder {
+  std::string name;
+  std::string description;
+  int (*build)(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+               const StyleContext& context);
+  IdKind ids = IdKind::Primitive;  // what the id buffer holds for this builder
+};
 
-// Throws InputError("--style", "unknown style 'x' (available: standard)").
-const StyleInfo& find_style(const std::string& name);
+const std::vector<StyleBuilder>& builder_table();
+// Throws InputError(where, "unknown builder 'x' (available: ...)").
+const StyleBuilder& find_builder(const std::string& name, const std::string& where);
 
-// Standard: Luft et al. Eq. 1 local illumination with the original normals, straight from
-// the raster pass's colour target.
-int build_standard(RenderGraph& graph, const GBufferHandles& gbuffer);
-// Expressive (Luft et al.): the same Eq. 1 colour, drawn with realigned normals and the
-// density ambient coefficient (the style's NormalMode::Realigned does the work).
-int build_expressive(RenderGraph& graph, const GBufferHandles& gbuffer);
+// shaded: Luft et al. Eq. 1 local illumination straight from the raster pass's colour
+// target, with whatever normals style.normals selects (standard, expressive).
+int build_shaded(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                 const StyleContext& context);
+
+// toon: Decaudin's cartoon shading of the albedo in k bands of N.L (passes/toon.h).
+int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+               const StyleContext& context);
+
+// ink: lines from depth, normal and id discontinuities (passes/edges.h) drawn over paper
+// (passes/composite.h), optionally over a wash of the shaded colour.
+int build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+              const StyleContext& context);
+
+// watercolor: a glazed wash per leaf cluster (Bousseau et al. 2006; Luft & Deussen 2006),
+// passes/watercolor.h; the id buffer holds cluster ids.
+int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                     const StyleContext& context);
+
+// A preset resolved into parameters. Not copyable: `set` refers into `params`.
+class Style {
+ public:
+  // Applies the preset (built-in name or .toml path), then each "key=value" of `overrides`
+  // (where = "--set"). Throws InputError.
+  Style(const std::string& name_or_path, const std::vector<std::string>& overrides = {});
+  Style(const Style&) = delete;
+  Style& operator=(const Style&) = delete;
+
+  const PresetInfo& info() const { return m_info; }
+  StyleParams& params() { return m_params; }
+  const StyleParams& params() const { return m_params; }
+  ParamSet& set() { return m_set; }
+  NormalMode normals() const;
+  // What this style needs of the raster pass besides the targets it reads: the id kind and
+  // flat albedo.
+  void configure(RasterRequest& request) const;
+  int build(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleContext& context) const;
+
+ private:
+  StyleParams m_params;
+  ParamSet m_set;
+  PresetInfo m_info;
+};
 
 }  // namespace sylva

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <opencv2/core/utility.hpp>
 
+#include "core/color.h"
 #include "core/error.h"
 
 namespace sylva {
@@ -11,14 +12,6 @@ namespace sylva {
 namespace {
 
 constexpr int kLinearSteps = 4096;  // resolution of the linear -> sRGB table
-
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-float linear_to_srgb(float c) {
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
 
 struct SrgbTables {
   std::array<float, 256> to_linear{};

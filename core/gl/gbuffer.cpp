@@ -20,6 +20,8 @@ const char* target_name(Target t) {
       return "id";
     case Target::Ka:
       return "ka";
+    case Target::Albedo:
+      return "albedo";
   }
   return "unknown";
 }
@@ -42,6 +44,8 @@ cv::Mat& target_image(GBuffer& buffer, Target t) {
       return buffer.id;
     case Target::Ka:
       return buffer.ka;
+    case Target::Albedo:
+      return buffer.albedo;
   }
   SYLVA_CHECK(false, "unknown target");
 }

@@ -18,6 +18,8 @@ int GBufferHandles::of(Target t) const {
       return id;
     case Target::Ka:
       return ka;
+    case Target::Albedo:
+      return albedo;
   }
   return -1;
 }
@@ -37,6 +39,8 @@ cv::Mat& slot(GBuffer& b, Target t) {
       return b.id;
     case Target::Ka:
       return b.ka;
+    case Target::Albedo:
+      return b.albedo;
   }
   return b.color;
 }
@@ -51,9 +55,10 @@ GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
   h.position = graph.resource("position");
   h.id = graph.resource("id");
   h.ka = graph.resource("ka");
+  h.albedo = graph.resource("albedo");
   std::vector<int> reads;
   if (setup.shading >= 0) reads.push_back(setup.shading);
-  graph.add_pass("raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka},
+  graph.add_pass("raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka, h.albedo},
                  [h, setup](PassContext& ctx) {
                    if (setup.shading >= 0)
                      setup.rasterizer->set_vertex_shading(

@@ -1,5 +1,6 @@
-// The raster pass as a render-graph node: writes the six G-buffer resources ("color",
-// "normal", "depth", "position", "id", "ka", each a cv::Mat as described in gbuffer.h) and,
+// The raster pass as a render-graph node: writes the seven G-buffer resources ("color",
+// "normal", "depth", "position", "id", "ka", "albedo", each a cv::Mat as described in
+// gbuffer.h) and,
 // when run, asks the rasteriser for only the targets some live pass reads or the caller
 // presents.
 #pragma once
@@ -10,7 +11,7 @@
 namespace sylva {
 
 struct GBufferHandles {
-  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1;
+  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1, albedo = -1;
   int of(Target t) const;
 };
 

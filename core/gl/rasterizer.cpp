@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/gl/downsample.h"
 #include "core/gl/gpu_scene.h"
@@ -17,7 +18,7 @@ namespace sylva {
 namespace {
 
 constexpr GLsizei kDrawChunkIndices = 3 * 32768;  // indices per draw call (32k triangles)
-constexpr int kSlots = 6;  // colour attachments, one per Target in kAllTargets order
+constexpr int kSlots = 7;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
 constexpr double kMaxFramebufferBytes = 4.0 * (1u << 30);
@@ -33,7 +34,7 @@ struct SlotFormat {
   int cv_type;
 };
 
-// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka.
+// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka, albedo.
 constexpr SlotFormat kSlotFormats[kSlots] = {
     {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
     {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
@@ -41,12 +42,32 @@ constexpr SlotFormat kSlotFormats[kSlots] = {
     {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
     {GL_R32UI, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1},
     {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
+    {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
 };
-static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka);
+static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka &&
+              kAllTargets[6] == Target::Albedo);
+
+// The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
+// transparent surround); all texels when none is.
+glm::vec3 texture_mean(const Texture& t) {
+  glm::dvec3 sum(0.0), all(0.0);
+  size_t n = 0;
+  const size_t count = size_t(t.width) * size_t(t.height);
+  for (size_t i = 0; i < count && 4 * i + 3 < t.rgba.size(); ++i) {
+    glm::dvec3 c;
+    for (int k = 0; k < 3; ++k) {
+      const double v = t.rgba[4 * i + k] / 255.0;
+      c[k] = srgb_to_linear(float(v));
+    }
+    all += c;
+    if (t.rgba[4 * i + 3] >= 128) sum += c, ++n;
+  }
+  if (n > 0) return glm::vec3(sum / double(n));
+  return count > 0 ? glm::vec3(all / double(count)) : glm::vec3(1.0f);
+}
 
 float srgb_encode(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return linear_to_srgb(c);
 }
 
 GLuint make_target_texture(GLenum internal_format, int width, int height) {
@@ -76,6 +97,7 @@ struct Rasterizer::Impl {
   GlContext& context;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
+  std::vector<glm::vec3> texture_means;  // linear mean colour of each texture's opaque texels
   std::vector<Material> materials;
   std::map<uint32_t, RasterProgram> programs;  // by target mask | alpha test << 16
   GLuint fbo = 0;
@@ -93,6 +115,7 @@ struct Rasterizer::Impl {
     meshes.clear();
     if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
     textures.clear();
+    texture_means.clear();
     materials.clear();
   }
 
@@ -172,6 +195,7 @@ struct Rasterizer::Impl {
     const IdKind id_kind = request.id_kind;
     glUseProgram(p.id);
     glUniform1i(p.scaled_normals, request.scaled_normals ? 1 : 0);
+    glUniform1i(p.flat_albedo, request.flat_albedo ? 1 : 0);
     glUniformMatrix4fv(p.view, 1, GL_FALSE, &camera.view[0][0]);
     glUniformMatrix4fv(p.proj, 1, GL_FALSE, &camera.proj[0][0]);
     glUniform1i(p.id_kind, id_kind == IdKind::Primitive ? 0 : id_kind == IdKind::Cluster ? 1 : 2);
@@ -225,7 +249,10 @@ struct Rasterizer::Impl {
       glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
       glUniform1i(p.oriented_foliage, m.oriented_foliage ? 1 : 0);
       glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
-      if (has_texture) glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
+      if (has_texture) {
+        glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
+        glUniform3fv(p.texture_mean, 1, &texture_means[mat.base_color_texture][0]);
+      }
       if (mat.double_sided) {
         glDisable(GL_CULL_FACE);
       } else {
@@ -277,7 +304,7 @@ struct Rasterizer::Impl {
       const Target t = kAllTargets[i];
       if (!has(targets, t)) continue;
       cv::Mat m = read_slot(i);
-      if (t == Target::Color) {
+      if (t == Target::Color || t == Target::Albedo) {
         m = downsample_color(m, ssaa);
       } else if (t == Target::Id) {
         m = downsample_id(m, ssaa);
@@ -313,8 +340,10 @@ void Rasterizer::upload(const Scene& scene) {
     }
   }
   s.materials = scene.materials;
-  for (const Texture& t : scene.textures)
+  for (const Texture& t : scene.textures) {
     s.textures.push_back(upload_texture(t));
+    s.texture_means.push_back(texture_mean(t));
+  }
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const Mesh& mesh = scene.meshes[i];
     if (mesh.material >= static_cast<int>(scene.materials.size())) {

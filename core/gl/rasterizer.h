@@ -25,6 +25,7 @@ struct RasterRequest {
   int ssaa = 1;                      // supersampling factor per axis, [1, 4]
   glm::vec4 background{1, 1, 1, 0};  // colour target clear, linear RGBA
   bool scaled_normals = false;       // normal target keeps |N| = ka (Luft Fig. 7c), not unit
+  bool flat_albedo = false;          // albedo target: each texture's mean colour (flat toon tones)
 };
 
 // Replacement per-vertex shading inputs, per scene mesh (scene order): normals (world

@@ -65,6 +65,8 @@ uniform bool u_oriented_foliage;  // realigned foliage normals face outward: nev
 uniform bool u_has_normals;     // false: flat normals from screen-space derivatives
 uniform bool u_ortho;
 uniform bool u_scaled_normals;  // Luft Fig. 7c: the normal target keeps |N| = ka
+uniform bool u_flat_albedo;     // albedo target: the texture's mean colour, not its texels
+uniform vec3 u_texture_mean;    // linear mean colour of the bound texture's opaque texels
 
 uniform float u_ambient;
 uniform int u_light_count;
@@ -90,6 +92,9 @@ layout(location = 4) out uint o_id;
 #ifdef OUT_KA
 layout(location = 5) out float o_ka;
 #endif
+#ifdef OUT_ALBEDO
+layout(location = 6) out vec4 o_albedo;
+#endif
 
 vec3 srgb_encode(vec3 c) {
   c = clamp(c, 0.0, 1.0);
@@ -109,7 +114,7 @@ vec3 surface_normal() {
 
 void main() {
   vec4 base = u_base_color * v_color;
-#if defined(OUT_COLOR)
+#if defined(OUT_COLOR) || defined(OUT_ALBEDO)
   if (u_has_texture) base *= texture(u_texture, v_uv);
 #elif defined(ALPHA_TEST)
   if (u_has_texture) base.a *= texture(u_texture, v_uv).a;
@@ -158,6 +163,12 @@ void main() {
 #endif
 #ifdef OUT_KA
   o_ka = clamp(v_ka, 0.0, 1.0);  // interpolating 1.0 can round to 1.0000001
+#endif
+#ifdef OUT_ALBEDO
+  vec3 albedo = base.rgb;
+  if (u_flat_albedo)
+    albedo = (u_base_color * v_color).rgb * (u_has_texture ? u_texture_mean : vec3(1.0));
+  o_albedo = vec4(srgb_encode(albedo), 1.0);
 #endif
 }
 )GLSL";
@@ -261,6 +272,8 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.has_normals = loc("u_has_normals");
   p.ortho = loc("u_ortho");
   p.scaled_normals = loc("u_scaled_normals");
+  p.flat_albedo = loc("u_flat_albedo");
+  p.texture_mean = loc("u_texture_mean");
   p.ambient = loc("u_ambient");
   p.light_count = loc("u_light_count");
   p.light_vector = loc("u_light_vector");

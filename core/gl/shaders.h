@@ -40,7 +40,7 @@ struct RasterProgram {
   GLuint id = 0;
   GLint view, proj, id_kind, object_id, base_color, has_texture, texture, alpha_cutoff,
       double_sided, has_normals, ortho, ambient, light_count, light_vector, light_color, light_spec,
-      scaled_normals, oriented_foliage;
+      scaled_normals, oriented_foliage, flat_albedo, texture_mean;
 };
 RasterProgram make_raster_program(TargetMask targets, bool alpha_test);
 

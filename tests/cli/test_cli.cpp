@@ -171,6 +171,36 @@ TEST(Cli, FoliageIlluminationOptions) {
                      "--normals");
 }
 
+TEST(Cli, StylesPresetsAndSet) {
+  RunResult list = run_sylva("styles");
+  ASSERT_EQ(list.status, 0) << list.output;
+  for (const char* s : {"standard", "expressive", "ink", "toon", "watercolor"})
+    EXPECT_NE(list.output.find(s), std::string::npos) << s;
+  RunResult ink = run_sylva("styles ink");
+  ASSERT_EQ(ink.status, 0) << ink.output;
+  EXPECT_NE(ink.output.find("edges.width"), std::string::npos);
+  EXPECT_NE(ink.output.find("[0.25, 16] px"), std::string::npos) << ink.output;
+
+  const std::string dir = temp_dir("presets-cli");
+  const std::string out = dir + "/x.png";
+  const std::string base = "render " + small_tree() + " --size 48 -o " + out + " ";
+  write_file(dir + "/bad.toml", "builder = \"ink\"\n[edges]\nwidth = 100\n");
+  expect_input_error(base + "--style " + dir + "/bad.toml", "bad.toml");
+  write_file(dir + "/syntax.toml", "builder = \"ink\n");
+  expect_input_error(base + "--style " + dir + "/syntax.toml", "line 1");
+  expect_input_error(base + "--style ink --set edges.width=0", "edges.width");
+  expect_input_error(base + "--style ink --set edges.widht=2", "unknown key");
+  expect_input_error(base + "--style toon --set toon.cast_shadows=true", "toon.cast_shadows");
+  expect_input_error(base + "--style sketch", "sketch");
+  EXPECT_FALSE(file_exists(out));
+  write_file(dir + "/mine.toml", "inherits = [\"ink\"]\n[edges]\nwidth = 3\n");
+  RunResult mine = run_sylva(base + "--style " + dir + "/mine.toml --set ink.fill=0.5");
+  EXPECT_EQ(mine.status, 0) << mine.output;
+  EXPECT_TRUE(file_exists(out));
+  // An explicit foliage option wins over the preset and is checked like it.
+  expect_input_error(base + "--style expressive --grid 1", "--grid");
+}
+
 TEST(Cli, BadScenesExitTwoAndWriteNothing) {
   std::string dir = temp_dir("bad-scenes");
   std::string out = dir + "/out.png";

@@ -79,5 +79,20 @@ TEST(Golden, Fern) {
   check_golden({"fern", "assets/polyhaven_fern_02.glb", "--size 256 --ssaa 2 --elevation 35"});
 }
 
+// Every built-in preset besides standard on the samples and the fern (NAME-STYLE.png).
+TEST(Golden, Presets) {
+  const char* scenes[][3] = {{"tree", "sample:tree", ""},
+                             {"bush", "sample:bush", ""},
+                             {"conifer", "sample:conifer", ""},
+                             {"fern", "assets/polyhaven_fern_02.glb", " --elevation 35"}};
+  for (const char* style : {"expressive", "ink", "toon", "watercolor"})
+    for (const auto& s : scenes) {
+      const std::string name = std::string(s[0]) + "-" + style;
+      const std::string args = std::string("--size 256 --ssaa 2 --style ") + style + s[2];
+      SCOPED_TRACE(name);
+      check_golden({name.c_str(), s[1], args.c_str()});
+    }
+}
+
 }  // namespace
 }  // namespace sylva::test

@@ -32,7 +32,7 @@ TEST(Styles, StandardNeverAllocatesTheIdTarget) {
   StyleRig s;
   RenderGraph graph;
   GBufferHandles gb = add_raster_pass(graph, s.rs);
-  int out = find_style("standard").build(graph, gb);
+  int out = Style("standard").build(graph, gb, StyleContext{});
   graph.present(out);
   graph.compile();
   EXPECT_FALSE(graph.is_live(gb.id));
@@ -43,6 +43,43 @@ TEST(Styles, StandardNeverAllocatesTheIdTarget) {
   EXPECT_EQ(img.type(), CV_8UC4);
   EXPECT_GT(cv::countNonZero(img.reshape(1, static_cast<int>(img.total())).col(3) == 255),
             64 * 64 / 20);
+}
+
+// Each built-in style asks the raster pass for only what its passes read: toon never draws
+// ids, watercolor draws cluster ids and no normals (its shading comes from the colour target).
+TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
+  StyleRig s;
+  assign_clusters(s.scene, {});
+  struct Expect {
+    const char* style;
+    TargetMask never;
+  } cases[] = {
+      {"standard", Target::Id | Target::Normal | Target::Albedo},
+      {"toon", Target::Id | Target::Color | Target::Depth},
+      {"watercolor", Target::Normal | Target::Albedo},
+  };
+  for (const Expect& e : cases) {
+    const Style style(e.style);
+    RenderGraph graph;
+    RasterSetup rs = s.rs;
+    style.configure(rs.request);
+    IlluminationSetup is;
+    is.scene = &s.scene;
+    const int shading = add_foliage_illumination_pass(graph, is);
+    if (style.normals() != NormalMode::Original) rs.shading = shading;
+    const GBufferHandles gb = add_raster_pass(graph, rs);
+    StyleContext context;
+    context.lighting = s.rs.lighting;
+    context.view = s.rs.camera.view;
+    const int out = style.build(graph, gb, context);
+    graph.present(out);
+    graph.execute();
+    const TargetMask drawn = s.raster->last_allocated_targets();
+    EXPECT_EQ(drawn & e.never, 0u) << e.style << " drew " << drawn;
+    const cv::Mat& img = graph.get<cv::Mat>(out);
+    EXPECT_EQ(img.type(), CV_8UC4) << e.style;
+    EXPECT_EQ(img.size(), cv::Size(64, 64)) << e.style;
+  }
 }
 
 TEST(Styles, PresentingIdsAllocatesThem) {
@@ -62,17 +99,17 @@ TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
   assign_clusters(s.scene, {});
   double mean_ka[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
-    const StyleInfo& style = find_style(k == 0 ? "standard" : "expressive");
+    const Style style(k == 0 ? "standard" : "expressive");
     RenderGraph graph;
     IlluminationSetup is;
     is.scene = &s.scene;
     const int shading = add_foliage_illumination_pass(graph, is);
     RasterSetup rs = s.rs;
-    if (style.normals != NormalMode::Original) rs.shading = shading;
+    if (style.normals() != NormalMode::Original) rs.shading = shading;
     const GBufferHandles gb = add_raster_pass(graph, rs);
-    graph.present(style.build(graph, gb));
+    graph.present(style.build(graph, gb, StyleContext{}));
     graph.compile();
-    EXPECT_EQ(graph.pass_live("foliage-illumination"), k == 1) << style.name;
+    EXPECT_EQ(graph.pass_live("foliage-illumination"), k == 1) << style.info().name;
     graph.present(gb.ka);  // a second compile with the ka target added, for the check
     graph.compile();
     graph.execute();
@@ -86,7 +123,7 @@ TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
 
 TEST(Styles, UnknownStyleIsAnInputError) {
   try {
-    find_style("watercolour");
+    Style s("watercolour");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "--style");

@@ -264,6 +264,29 @@ TEST(Raster, DoubleSidedBackFaceNormalFacesCamera) {
   EXPECT_EQ(cv::countNonZero(g.id), 0);
 }
 
+TEST(Raster, AlbedoIsTheUnlitBaseColour) {
+  // With no light at all the colour target is black, the albedo is the material's colour
+  // (sRGB-encoded) with alpha = coverage; the background is transparent black.
+  Material m;
+  m.base_color = glm::vec4(0.2140f, 0.5f, 0.0331f, 1.0f);  // sRGB (128, 188, 51)
+  Scene s = scene_of({make_quad(1.0f, 0.0f)}, m);
+  set_ids(s.meshes[0], 1, 1);
+  Rasterizer r(gl());
+  r.upload(s);
+  for (int ssaa : {1, 2}) {
+    const GBuffer g = r.render(front_camera(s, 64), ambient_only(0),
+                               request_of(Target::Color | Target::Albedo, IdKind::Primitive, ssaa));
+    ASSERT_EQ(g.albedo.type(), CV_8UC4);
+    const cv::Vec4b centre = g.albedo.at<cv::Vec4b>(32, 32);
+    EXPECT_NEAR(centre[2], 128, 1) << ssaa;  // BGRA
+    EXPECT_NEAR(centre[1], 188, 1) << ssaa;
+    EXPECT_NEAR(centre[0], 51, 1) << ssaa;
+    EXPECT_EQ(centre[3], 255) << ssaa;
+    EXPECT_EQ(g.color.at<cv::Vec4b>(32, 32)[1], 0) << ssaa;
+    EXPECT_EQ(g.albedo.at<cv::Vec4b>(0, 0), cv::Vec4b(0, 0, 0, 0)) << ssaa;
+  }
+}
+
 TEST(Raster, OutwardFoliageNormalsAreNotFlippedOnBackFaces) {
   // A baked (realigned) leaf's normal points out of the crown whichever side is seen.
   Material two_sided;

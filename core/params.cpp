@@ -1,0 +1,275 @@
+#include "core/params.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+#include "core/color.h"
+#include "core/error.h"
+
+namespace sylva {
+
+namespace {
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string range_text(const ParamSpec& s) {
+  return std::string(s.min_open ? "(" : "[") + number_text(s.min) + ", " + number_text(s.max) + "]";
+}
+
+std::string section_of(const std::string& key) {
+  const size_t dot = key.find('.');
+  return dot == std::string::npos ? std::string() : key.substr(0, dot);
+}
+
+}  // namespace
+
+bool parse_hex_color(const std::string& text, glm::vec3& linear) {
+  if (text.size() != 7 || text[0] != '#') return false;
+  for (int c = 0; c < 3; ++c) {
+    unsigned v = 0;
+    const char* b = text.data() + 1 + 2 * c;
+    auto [p, ec] = std::from_chars(b, b + 2, v, 16);
+    if (ec != std::errc() || p != b + 2) return false;
+    linear[c] = srgb_to_linear(float(v) / 255.0f);
+  }
+  return true;
+}
+
+std::string hex_color(const glm::vec3& linear) {
+  char buf[8];
+  int v[3];
+  for (int c = 0; c < 3; ++c)
+    v[c] = int(std::lround(std::clamp(linear_to_srgb(linear[c]), 0.0f, 1.0f) * 255.0f));
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", v[0], v[1], v[2]);
+  return buf;
+}
+
+void ParamSet::add(ParamSpec spec, Binding binding) {
+  SYLVA_CHECK(!has(spec.key), "duplicate parameter " + spec.key);
+  m_specs.push_back(std::move(spec));
+  m_bindings.push_back(std::move(binding));
+  m_specs.back().default_text = value_text(m_specs.back().key);
+}
+
+void ParamSet::add_float(const std::string& key, float& field, double min, double max,
+                         const std::string& unit, const std::string& doc, bool min_open) {
+  SYLVA_CHECK(std::isfinite(field) && (min_open ? field > min : field >= min) && field <= max,
+              "default of " + key + " outside its range");
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Float;
+  s.min = min;
+  s.max = max;
+  s.min_open = min_open;
+  s.unit = unit;
+  s.doc = doc;
+  Binding b;
+  b.f = &field;
+  add(std::move(s), std::move(b));
+}
+
+void ParamSet::add_int(const std::string& key, int& field, int min, int max,
+                       const std::string& unit, const std::string& doc) {
+  SYLVA_CHECK(field >= min && field <= max, "default of " + key + " outside its range");
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Int;
+  s.min = min;
+  s.max = max;
+  s.unit = unit;
+  s.doc = doc;
+  Binding b;
+  b.i = &field;
+  add(std::move(s), std::move(b));
+}
+
+void ParamSet::add_bool(const std::string& key, bool& field, const std::string& doc) {
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Bool;
+  s.doc = doc;
+  Binding b;
+  b.b = &field;
+  add(std::move(s), std::move(b));
+}
+
+void ParamSet::add_color(const std::string& key, glm::vec3& field, const std::string& doc) {
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Color;
+  s.doc = doc;
+  Binding b;
+  b.c = &field;
+  add(std::move(s), std::move(b));
+}
+
+void ParamSet::add_choice(const std::string& key, std::string& field,
+                          std::vector<std::string> choices, const std::string& doc) {
+  bool ok = false;
+  for (const std::string& c : choices)
+    ok = ok || c == field;
+  SYLVA_CHECK(ok, "default of " + key + " is not one of its choices");
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Choice;
+  s.choices = std::move(choices);
+  s.doc = doc;
+  Binding b;
+  b.s = &field;
+  add(std::move(s), std::move(b));
+}
+
+void ParamSet::add_text(const std::string& key, std::string& field, TextCheck check,
+                        const std::string& forms, const std::string& doc) {
+  check(field, key);  // the default must pass its own check
+  ParamSpec s;
+  s.key = key;
+  s.type = ParamType::Text;
+  s.forms = forms;
+  s.doc = doc;
+  Binding b;
+  b.s = &field;
+  b.check = std::move(check);
+  add(std::move(s), std::move(b));
+}
+
+bool ParamSet::has(const std::string& key) const {
+  for (const ParamSpec& s : m_specs)
+    if (s.key == key) return true;
+  return false;
+}
+
+size_t ParamSet::index(const std::string& key, const std::string& where) const {
+  for (size_t i = 0; i < m_specs.size(); ++i)
+    if (m_specs[i].key == key) return i;
+  // List the keys of the same section (or the sections) so a typo is easy to fix.
+  const std::string section = section_of(key);
+  std::string known;
+  for (const ParamSpec& s : m_specs) {
+    const std::string other = section_of(s.key);
+    const std::string item = other == section && !section.empty() ? s.key : other + ".*";
+    if (known.find(item) == std::string::npos) known += (known.empty() ? "" : ", ") + item;
+  }
+  throw InputError(where, "unknown key '" + key + "' (known: " + known + ")");
+}
+
+const ParamSpec& ParamSet::spec(const std::string& key, const std::string& where) const {
+  return m_specs[index(key, where)];
+}
+
+void ParamSet::set_number(const std::string& key, double value, const std::string& where) {
+  const size_t i = index(key, where);
+  const ParamSpec& s = m_specs[i];
+  const std::string name = where + ": " + key;
+  if (s.type == ParamType::Text) {
+    set_text(key, number_text(value), where);
+    return;
+  }
+  if (s.type != ParamType::Float && s.type != ParamType::Int)
+    throw InputError(where, key + " must be " +
+                                (s.type == ParamType::Bool ? std::string("true or false")
+                                                           : std::string("a text value")) +
+                                ", got the number " + number_text(value));
+  const bool below = s.min_open ? !(value > s.min) : !(value >= s.min);
+  if (!std::isfinite(value) || below || value > s.max)
+    throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) +
+                                (s.unit.empty() ? "" : " " + s.unit));
+  if (s.type == ParamType::Int) {
+    if (value != std::floor(value))
+      throw InputError(where, key + " must be a whole number, got " + number_text(value));
+    *m_bindings[i].i = int(value);
+  } else {
+    *m_bindings[i].f = float(value);
+  }
+}
+
+void ParamSet::set_bool(const std::string& key, bool value, const std::string& where) {
+  const size_t i = index(key, where);
+  if (m_specs[i].type != ParamType::Bool)
+    throw InputError(where, key + " is not a true/false value");
+  *m_bindings[i].b = value;
+}
+
+void ParamSet::set_text(const std::string& key, const std::string& value,
+                        const std::string& where) {
+  const size_t i = index(key, where);
+  const ParamSpec& s = m_specs[i];
+  switch (s.type) {
+    case ParamType::Color: {
+      glm::vec3 c;
+      if (!parse_hex_color(value, c))
+        throw InputError(where, key + " must be a colour \"#RRGGBB\", got \"" + value + "\"");
+      *m_bindings[i].c = c;
+      return;
+    }
+    case ParamType::Choice: {
+      std::string list;
+      for (const std::string& c : s.choices) {
+        if (c == value) {
+          *m_bindings[i].s = value;
+          return;
+        }
+        list += (list.empty() ? "" : ", ") + c;
+      }
+      throw InputError(where, key + " = \"" + value + "\" is not one of " + list);
+    }
+    case ParamType::Text:
+      m_bindings[i].check(value, where + ": " + key);
+      *m_bindings[i].s = value;
+      return;
+    default:
+      throw InputError(where, key + " must be " +
+                                  (s.type == ParamType::Bool ? std::string("true or false")
+                                                             : "a number in " + range_text(s)) +
+                                  ", got \"" + value + "\"");
+  }
+}
+
+void ParamSet::set_from_string(const std::string& key, const std::string& text,
+                               const std::string& where) {
+  const ParamSpec& s = m_specs[index(key, where)];
+  if (s.type == ParamType::Float || s.type == ParamType::Int) {
+    double v = 0.0;
+    const char* end = text.data() + text.size();
+    auto [p, ec] = std::from_chars(text.data(), end, v);
+    if (text.empty() || ec != std::errc() || p != end)
+      throw InputError(where,
+                       key + " must be a number in " + range_text(s) + ", got \"" + text + "\"");
+    set_number(key, v, where);
+  } else if (s.type == ParamType::Bool) {
+    if (text == "true" || text == "1" || text == "on") {
+      set_bool(key, true, where);
+    } else if (text == "false" || text == "0" || text == "off") {
+      set_bool(key, false, where);
+    } else {
+      throw InputError(where, key + " must be true or false, got \"" + text + "\"");
+    }
+  } else {
+    set_text(key, text, where);
+  }
+}
+
+std::string ParamSet::value_text(const std::string& key) const {
+  const size_t i = index(key, "parameter");
+  const Binding& b = m_bindings[i];
+  switch (m_specs[i].type) {
+    case ParamType::Float:
+      return number_text(*b.f);
+    case ParamType::Int:
+      return std::to_string(*b.i);
+    case ParamType::Bool:
+      return *b.b ? "true" : "false";
+    case ParamType::Color:
+      return hex_color(*b.c);
+    default:
+      return *b.s;
+  }
+}
+
+}  // namespace sylva

@@ -1,0 +1,175 @@
+#include "passes/composite.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "passes/pass_common.h"
+
+namespace sylva {
+
+namespace {
+
+// Brightness swing of the ground at grain = 1.
+constexpr float kGrainAmplitude = 0.15f;
+
+const std::array<float, 256>& decode_lut() {
+  static const std::array<float, 256> lut = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i)
+      t[size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+    return t;
+  }();
+  return lut;
+}
+
+// Linear [0, 1] -> 8-bit sRGB through a 16-bit table: exact to the 8-bit level even in the
+// darks, where the sRGB curve is steepest.
+constexpr int kEncodeSteps = 65535;
+const std::vector<uint8_t>& encode_lut() {
+  static const std::vector<uint8_t> lut = [] {
+    std::vector<uint8_t> t(kEncodeSteps + 1);
+    for (int i = 0; i <= kEncodeSteps; ++i)
+      t[size_t(i)] = uint8_t(std::lround(linear_to_srgb(float(i) / kEncodeSteps) * 255.0f));
+    return t;
+  }();
+  return lut;
+}
+
+inline uint8_t encode(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  return encode_lut()[size_t(std::lround(c * kEncodeSteps))];
+}
+
+// One octave of value noise in [-1, 1] (bicubic, may overshoot a little): a seeded lattice
+// with one value per `cell` px, enlarged to the image. The lattice has a fixed number of cells
+// across the reference-scaled image, so the pattern does not depend on the resolution.
+cv::Mat noise_octave(const cv::Size& size, double cell, uint64_t seed) {
+  const int gw = int(std::ceil(size.width / cell)) + 4;
+  const int gh = int(std::ceil(size.height / cell)) + 4;
+  cv::Mat lattice(gh, gw, CV_32FC1);
+  cv::RNG rng(seed);  // cv::RNG is a fixed multiply-with-carry generator: same bytes everywhere
+  rng.fill(lattice, cv::RNG::UNIFORM, -1.0, 1.0);
+  const cv::Size big(int(std::lround(gw * cell)), int(std::lround(gh * cell)));
+  cv::Mat up;
+  cv::resize(lattice, up, big, 0, 0, cell >= 1.0 ? cv::INTER_CUBIC : cv::INTER_AREA);
+  // Skip the first two cells: bicubic needs neighbours on both sides.
+  const int off = int(std::lround(2 * cell));
+  return up(cv::Rect(off, off, size.width, size.height)).clone();
+}
+
+void check_paper(const PaperParams& p) {
+  SYLVA_CHECK(std::isfinite(p.grain) && p.grain >= 0.0f && p.grain <= 1.0f, "ink: grain range");
+  SYLVA_CHECK(std::isfinite(p.grain_size) && p.grain_size >= 0.5f && p.grain_size <= 32.0f,
+              "ink: grain size range");
+}
+
+}  // namespace
+
+cv::Mat make_paper(const cv::Size& size, const PaperParams& p) {
+  check_paper(p);
+  const cv::Scalar bgr(p.color.b, p.color.g, p.color.r);
+  cv::Mat paper(size, CV_32FC3, bgr);
+  if (p.grain <= 0.0f || size.empty()) return paper;
+
+  // Two octaves: fine tooth and broader cloudiness of the sheet.
+  const double cell = p.grain_size * reference_scale(size);
+  const uint64_t seed = uint64_t(uint32_t(p.seed)) * 2654435761ull + 1ull;
+  cv::Mat fine = noise_octave(size, cell, seed);
+  cv::Mat broad = noise_octave(size, 4.0 * cell, seed ^ 0x9e3779b97f4a7c15ull);
+  cv::Mat n = 0.65 * fine + 0.35 * broad;
+  for (int y = 0; y < size.height; ++y) {
+    const float* v = n.ptr<float>(y);
+    cv::Vec3f* out = paper.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < size.width; ++x) {
+      const float f = std::max(0.0f, 1.0f + kGrainAmplitude * p.grain * v[x]);
+      out[x] = cv::Vec3f(bgr[0] * f, bgr[1] * f, bgr[2] * f);
+    }
+  }
+  return paper;
+}
+
+int add_paper_pass(RenderGraph& g, int size_of, const PaperParams& p) {
+  check_paper(p);
+  const int out = g.resource("paper");
+  g.add_pass("paper", {size_of}, {out}, [p, size_of, out](PassContext& ctx) {
+    ctx.write(out, make_paper(ctx.read<cv::Mat>(size_of).size(), p));
+  });
+  return out;
+}
+
+void bind_ink_params(ParamSet& set, InkParams& p) {
+  set.add_color("ink.paper_color", p.paper.color, "colour of the ground (paper)");
+  set.add_float("ink.grain", p.paper.grain, 0.0, 1.0, "",
+                "paper grain strength (0 = flat; 1 = about +-15% brightness)");
+  set.add_float("ink.grain_size", p.paper.grain_size, 0.5, 32.0, "px at 1024 px",
+                "size of the finest paper grain");
+  set.add_int("ink.seed", p.paper.seed, 0, std::numeric_limits<int>::max(), "",
+              "random seed of the paper grain");
+  set.add_float("ink.fill", p.fill, 0.0, 1.0, "",
+                "wash of the shaded colour under the lines (0 = pure pen drawing)");
+  set.add_bool("ink.transparent", p.transparent, "paper only under the drawing, alpha 0 elsewhere");
+}
+
+cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, const cv::Mat& paper,
+                      const InkParams& p) {
+  const cv::Size size = lines.size();
+  expect_image(lines, CV_32FC1, size, "lines");
+  expect_image(paper, CV_32FC3, size, "paper");
+  const bool has_color = coverage_or_color.type() == CV_8UC4;
+  expect_image(coverage_or_color, has_color ? CV_8UC4 : CV_32FC1, size, "coverage or color");
+  SYLVA_CHECK(std::isfinite(p.fill) && p.fill >= 0.0f && p.fill <= 1.0f, "ink: fill range");
+
+  const std::array<float, 256>& decode = decode_lut();
+  const cv::Vec3f line(p.line_color.b, p.line_color.g, p.line_color.r);
+  cv::Mat out(size, CV_8UC4);
+  for (int y = 0; y < size.height; ++y) {
+    const float* l = lines.ptr<float>(y);
+    const cv::Vec3f* pp = paper.ptr<cv::Vec3f>(y);
+    const cv::Vec4b* c = has_color ? coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
+    const float* m = has_color ? nullptr : coverage_or_color.ptr<float>(y);
+    cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
+    for (int x = 0; x < size.width; ++x) {
+      const float a = has_color ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
+      const cv::Vec3f shaded =
+          has_color ? cv::Vec3f(decode[c[x][0]], decode[c[x][1]], decode[c[x][2]]) : line;
+      const float wash = p.fill * a;
+      cv::Vec3f ground;
+      for (int k = 0; k < 3; ++k)
+        ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
+      const float ink = std::clamp(l[x], 0.0f, 1.0f);
+      cv::Vec3f rgb;
+      float alpha = 1.0f;
+      if (!p.transparent) {
+        rgb = ground * (1.0f - ink) + line * ink;
+      } else {
+        // Straight alpha: lines over the ground, which covers only the drawing.
+        alpha = ink + a * (1.0f - ink);
+        rgb = alpha > 0.0f ? (line * ink + ground * (a * (1.0f - ink))) / alpha : ground;
+      }
+      o[x] = cv::Vec4b(encode(rgb[0]), encode(rgb[1]), encode(rgb[2]),
+                       uint8_t(std::lround(alpha * 255.0f)));
+    }
+  }
+  return out;
+}
+
+int add_ink_composite_pass(RenderGraph& g, int lines, int coverage_or_color, const InkParams& p) {
+  const int paper = add_paper_pass(g, coverage_or_color, p.paper);
+  const int out = g.resource("ink");
+  g.add_pass(
+      "ink-composite", {lines, coverage_or_color, paper}, {out},
+      [lines, coverage_or_color, paper, out, p](PassContext& ctx) {
+        ctx.write(out, composite_ink(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(coverage_or_color),
+                                     ctx.read<cv::Mat>(paper), p));
+      });
+  return out;
+}
+
+}  // namespace sylva

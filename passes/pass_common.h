@@ -1,0 +1,20 @@
+// Helpers shared by the image passes (DESIGN.md §2, passes/): resolution-independent sizes and
+// the image conventions every pass follows. Images are row 0 at the top; masks and line
+// coverage are CV_32FC1 in [0, 1]; colour images are CV_8UC4 BGRA sRGB with alpha = coverage,
+// as the raster pass's colour target (core/gl/gbuffer.h).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace sylva {
+
+// Sizes in pixels are given at a reference resolution (the shorter image side of 1024 px), so a
+// 4096² render looks like a 1024² one: the factor to multiply them by for `size`.
+inline constexpr int kReferenceResolution = 1024;
+double reference_scale(const cv::Size& size);
+
+// A programming error (SYLVA_CHECK) unless m has the given type and size (size empty = any):
+// passes check the images the graph hands them once, at the top.
+void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* what);
+
+}  // namespace sylva

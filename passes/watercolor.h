@@ -1,0 +1,136 @@
+// Watercolor (Bousseau et al. 2006 "Interactive watercolor rendering with temporal coherence
+// and abstraction"; Luft & Deussen 2006 "Real-time watercolor illustrations of plants using a
+// blurred depth test"). Every leaf cluster becomes one wash: its id mask is blurred and
+// thresholded (soft wet-on-wet or hard wet-on-dry edges), wobbled by the paper's gradient,
+// darkened along its rim where pigment pools, tinted with the cluster's mean colour, given leaf
+// detail through a blurred depth test, and glazed over the washes behind it, back to front by
+// mean depth. Glazing is subtractive: each wash is an optical density (-log2 of its linear
+// transmittance) scaled by its coverage, and densities add (transmittances multiply), so a
+// thin or half-covered wash keeps its hue instead of greying towards the paper. A cluster's
+// wash continues about two blur radii under the clusters in front of it (normalised
+// convolution that ignores the occluding pixels) at a third of its density, so overlaps read
+// as glazes, with the back wash's rim showing through, rather than as abutting flat regions.
+// Paper grain and world-space turbulence then modulate the pigment density with Bousseau's
+// formula, and the result sits on paper. The masks are blurred at reduced resolution and each
+// wash is painted over its bounding box only.
+//
+// Reads (cv::Mat render-graph resources, conventions of core/gl/gbuffer.h):
+//   color     CV_8UC4 BGRA sRGB shaded, alpha = coverage (premultiplied over black): the
+//             pigment colour (pigment = "shaded") and the leaf detail (luminance variation)
+//   albedo    CV_8UC4 BGRA sRGB unlit base colour: the pigment colour when pigment = "albedo"
+//             (only then is it read)
+//   id        CV_32SC1 cluster ids, 0 = background: one wash per distinct non-zero id
+//   depth     CV_32FC1 linear view depth, 0 = background: layer order and the blurred depth
+//             test
+//   position  CV_32FC3 view-space position: where the turbulence noise is evaluated (through
+//             view_to_world, so it sticks to the plant in a turntable); read only when
+//             turbulence_strength > 0
+// Writes "watercolor": CV_8UC4 BGRA sRGB, opaque (alpha 255), on the paper colour.
+//
+// Pigment colour: the cluster's mean *shaded* colour by default, because the Luft foliage
+// illumination (ka, inner clusters darker) is what gives the painted tree its volume; the
+// albedo gives flat local colour with all the shading left to glazing and detail.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "core/graph/render_graph.h"
+#include "core/params.h"
+
+namespace sylva {
+
+struct WatercolorParams {
+  // Gaussian sigma applied to each cluster mask before thresholding; shapes become rounder
+  // and small gaps between leaves close. px at 1024 px; default 5; [0, 64].
+  float blur = 5.0f;
+  // Width of the smoothstep threshold of the blurred mask: 0 = hard wet-on-dry edge (about a
+  // pixel wide), 1 = soft wet-on-wet edge spanning the whole blur. [0, 1]; default 0.25.
+  float edge_softness = 0.25f;
+  // Pigment pooling at the wash's rim, from the blurred mask's gradient magnitude: the extra
+  // pigment density at the steepest edge (Bousseau's d - 1; 1 = twice the pigment), scaled
+  // down on soft edges (by 1 - 0.8 edge_softness: wet-on-wet diffuses rather than pools).
+  // [0, 1]; default 0.6.
+  float edge_darkening = 0.6f;
+  // beta of Bousseau's density modulation by the paper texture (pigment settling in the
+  // grain). [0, 1]; default 0.6.
+  float paper_strength = 0.6f;
+  // beta of Bousseau's density modulation by low-frequency turbulence (uneven pigment flow),
+  // 3-D noise in world space. [0, 1]; default 0.5.
+  float turbulence_strength = 0.5f;
+  // Feature size of the turbulence in scene units: "0.3" (scene units), "5%" (of
+  // reference_length) or "auto" (= 6% of reference_length). Default "auto".
+  std::string turbulence_size = "auto";
+  // Displacement of the mask lookup along the paper texture's gradient (hand-drawn wobble of
+  // the wash outline), as the RMS displacement. px at 1024 px; default 1.5; [0, 8].
+  float wobble = 1.5f;
+  // Leaf detail inside a wash: the share of the shaded colour's luminance variation kept where
+  // leaves stand in front of their blurred depth (Luft & Deussen's blurred depth test).
+  // [0, 1]; default 0.5.
+  float detail = 0.5f;
+  // Paper grain size (the generated paper's finest noise period). px at 1024 px; default 3;
+  // [1, 16].
+  float grain = 3.0f;
+  // "generated" (value-noise fBm from the seed, in screen space so it stays put like paper)
+  // or the path of a grey-scale paper image (tiled, 1 image px = 1 px at 1024 px; bright =
+  // raised grain). A missing or unreadable file is an InputError.
+  std::string paper = "generated";
+  glm::vec3 paper_color{0.913f, 0.871f, 0.784f};  // linear RGB of "#f5f0e5"
+  // "shaded" (mean of the color buffer) or "albedo" (mean of the albedo buffer).
+  std::string pigment = "shaded";
+  // Seed of the generated paper and of the turbulence noise. [0, 2^31 - 1]; default 1.
+  int seed = 1;
+  // Not a parameter: the reference for a relative turbulence_size, in scene units (the style
+  // sets the foliage bounding-box diagonal). 0 = the world-space bounding-box diagonal of the
+  // visible points, which is fine for a still but changes slightly as a turntable rotates.
+  float reference_length = 0.0f;
+};
+
+struct WatercolorImages {
+  cv::Mat color;     // CV_8UC4 BGRA sRGB shaded, alpha = coverage
+  cv::Mat albedo;    // CV_8UC4 BGRA sRGB; may be empty unless pigment = "albedo"
+  cv::Mat id;        // CV_32SC1, 0 background
+  cv::Mat depth;     // CV_32FC1 linear view depth, 0 background
+  cv::Mat position;  // CV_32FC3 view space; may be empty when turbulence_strength = 0
+};
+
+// Bousseau et al. 2006, pigment density variation: modulation of a colour channel c in [0, 1]
+// (1 = no pigment) by density d (1 = unchanged, > 1 denser/darker): c(1 - (1 - c)(d - 1)).
+// 0 and 1 are fixed points; the result is clamped to [0, 1].
+inline float pigment_density(float c, float d) {
+  const float v = c * (1.0f - (1.0f - c) * (d - 1.0f));
+  return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+}
+// d for a texture value t in [0, 1] and strength beta: 1 + beta (t - 0.5).
+inline float texture_density(float t, float beta) {
+  return 1.0f + beta * (t - 0.5f);
+}
+
+// Throws InputError naming watercolor.paper / watercolor.pigment when the paper file is
+// unreadable or the albedo is missing for pigment = "albedo". SYLVA_CHECKs image types.
+cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
+                   const WatercolorParams& p);
+
+// Paper relief in [0, 1] (mean about 0.5) at `size`, generated or loaded as p.paper says.
+cv::Mat watercolor_paper(const cv::Size& size, const WatercolorParams& p);
+
+// The turbulence texture in [0, 1] (CV_32FC1) at every covered pixel (depth > 0, or position
+// non-zero when depth is empty), evaluated at the world position view_to_world * position;
+// background 0.5.
+cv::Mat watercolor_turbulence(const cv::Mat& position, const cv::Mat& depth,
+                              const glm::mat4& view_to_world, const WatercolorParams& p);
+
+void bind_watercolor_params(ParamSet& set, WatercolorParams& p);
+
+struct WatercolorResources {
+  int color = -1, albedo = -1, id = -1, depth = -1, position = -1;
+};
+
+// Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only
+// for pigment = "albedo" (InputError at run time if it is -1 then), position only when
+// turbulence_strength > 0. The parameters are copied.
+int add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
+                        const glm::mat4& view_to_world, const WatercolorParams& p);
+
+}  // namespace sylva

@@ -1,0 +1,17 @@
+#include "styles/style_params.h"
+
+namespace sylva {
+
+void bind_style_params(ParamSet& set, StyleParams& p) {
+  set.add_choice("style.normals", p.normals, {"original", "realigned", "realigned-scaled"},
+                 "normals the raster pass draws with (Luft §3.3, Fig. 7c)");
+  set.add_choice("style.albedo", p.albedo, {"textured", "flat"},
+                 "albedo colours: the textures' texels, or each texture's mean (flat tones)");
+  bind_foliage_params(set, p.foliage);
+  bind_edge_params(set, p.edges);
+  bind_ink_params(set, p.ink);
+  bind_toon_params(set, p.toon);
+  bind_watercolor_params(set, p.watercolor);
+}
+
+}  // namespace sylva

@@ -1,0 +1,33 @@
+// Every parameter a style preset can set (styles/presets/*.toml, --set key=value), as one
+// struct bound to dotted keys by bind_style_params: style.* (what the raster pass draws) and
+// foliage.* (the Luft preprocessing), and one section per image pass (toon.*, ...).
+#pragma once
+
+#include <string>
+
+#include "core/params.h"
+#include "npr/illumination_pass.h"
+#include "passes/composite.h"
+#include "passes/edges.h"
+#include "passes/toon.h"
+#include "passes/watercolor.h"
+
+namespace sylva {
+
+struct StyleParams {
+  // style.normals: the normals the raster pass draws with: original, realigned (Luft §3.3),
+  // realigned-scaled (their length is ka, Luft Fig. 7c).
+  std::string normals = "original";
+  // style.albedo: the albedo buffer's colours: the texture's texels, or its mean (flat tones).
+  std::string albedo = "textured";
+  FoliageSettings foliage;
+  EdgeParams edges;
+  InkParams ink;
+  ToonParams toon;
+  WatercolorParams watercolor;
+};
+
+// `set` refers into `params`: keep both alive together.
+void bind_style_params(ParamSet& set, StyleParams& params);
+
+}  // namespace sylva

@@ -1,0 +1,542 @@
+// Watercolor pass (Bousseau et al. 2006; Luft & Deussen 2006) on synthetic G-buffers: the
+// pigment formula, determinism, parameter extremes, wash edges, edge darkening, glazing,
+// world-space turbulence under a rotating view, the paper, bad input and the graph node.
+// With SYLVA_WATER_LOOK=<folder> the Look test also writes PNGs of synthetic trees there.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/graph/render_graph.h"
+#include "core/params.h"
+#include "passes/watercolor.h"
+
+namespace sylva::test {
+namespace {
+
+float srgb_encode(float l) {
+  l = std::clamp(l, 0.0f, 1.0f);
+  return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+}
+
+// A synthetic G-buffer: pinhole camera (focal f px, principal point at the centre), positions
+// in view space (camera looks along -Z), depth = -z.
+struct Scene {
+  WatercolorImages img;
+  float focal = 0;
+};
+
+Scene empty_scene(cv::Size size) {
+  Scene s;
+  s.img.color = cv::Mat(size, CV_8UC4, cv::Scalar(0, 0, 0, 0));
+  s.img.albedo = cv::Mat(size, CV_8UC4, cv::Scalar(0, 0, 0, 0));
+  s.img.id = cv::Mat(size, CV_32SC1, cv::Scalar(0));
+  s.img.depth = cv::Mat(size, CV_32FC1, cv::Scalar(0));
+  s.img.position = cv::Mat(size, CV_32FC3, cv::Scalar(0, 0, 0));
+  s.focal = float(size.width);
+  return s;
+}
+
+void set_pixel(Scene& s, int x, int y, int32_t id, cv::Vec3f bgr_linear, float depth) {
+  const cv::Size size = s.img.id.size();
+  s.img.id.at<int32_t>(y, x) = id;
+  s.img.depth.at<float>(y, x) = depth;
+  const float u = (float(x) + 0.5f - 0.5f * float(size.width)) / s.focal;
+  const float v = (float(y) + 0.5f - 0.5f * float(size.height)) / s.focal;
+  s.img.position.at<cv::Vec3f>(y, x) = cv::Vec3f(u * depth, -v * depth, -depth);
+  cv::Vec4b c;
+  for (int ch = 0; ch < 3; ++ch)
+    c[ch] = uchar(std::lround(srgb_encode(bgr_linear[ch]) * 255.0f));
+  c[3] = 255;
+  s.img.color.at<cv::Vec4b>(y, x) = c;
+  s.img.albedo.at<cv::Vec4b>(y, x) = c;
+}
+
+// A disc of one id, its depth bulging towards the viewer like a sphere of leaves.
+void add_disc(Scene& s, cv::Point2f centre, float radius, int32_t id, cv::Vec3f bgr, float depth) {
+  const cv::Size size = s.img.id.size();
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x) {
+      const float dx = float(x) + 0.5f - centre.x, dy = float(y) + 0.5f - centre.y;
+      const float r2 = (dx * dx + dy * dy) / (radius * radius);
+      if (r2 > 1.0f) continue;
+      const float z = depth - 0.1f * depth * std::sqrt(1.0f - r2);
+      const float cur = s.img.depth.at<float>(y, x);
+      if (cur > 0.0f && cur <= z) continue;
+      set_pixel(s, x, y, id, bgr, z);
+    }
+}
+
+// A clump of small leaves (ellipses) around a centre: per-leaf shading and depth jitter, so
+// the clusters have the detail a real render has.
+void add_clump(Scene& s, cv::RNG& rng, cv::Point2f centre, float radius, int32_t id, cv::Vec3f bgr,
+               float depth, int leaves, float leaf_size) {
+  const cv::Size size = s.img.id.size();
+  for (int i = 0; i < leaves; ++i) {
+    const float a = rng.uniform(0.0f, 6.2831853f);
+    const float r = radius * std::sqrt(rng.uniform(0.0f, 1.0f));
+    const cv::Point2f c(centre.x + r * std::cos(a), centre.y + r * std::sin(a));
+    const float len = leaf_size * rng.uniform(0.7f, 1.3f), wid = len * 0.45f;
+    const float ang = rng.uniform(0.0f, 3.14159265f);
+    const float ca = std::cos(ang), sa = std::sin(ang);
+    // Outer leaves nearer and brighter (what the Luft illumination does to a clump).
+    const float rr = r / radius;
+    const float z = depth - 0.15f * depth * std::sqrt(std::max(0.0f, 1.0f - rr * rr)) +
+                    rng.uniform(-0.01f, 0.01f) * depth;
+    const float shade = rng.uniform(0.6f, 1.25f) * (0.75f + 0.35f * (1.0f - rr));
+    const int x0 = std::max(0, int(c.x - len)), x1 = std::min(size.width - 1, int(c.x + len));
+    const int y0 = std::max(0, int(c.y - len)), y1 = std::min(size.height - 1, int(c.y + len));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const float dx = float(x) + 0.5f - c.x, dy = float(y) + 0.5f - c.y;
+        const float u = (dx * ca + dy * sa) / len, v = (-dx * sa + dy * ca) / wid;
+        if (u * u + v * v > 1.0f) continue;
+        const float cur = s.img.depth.at<float>(y, x);
+        if (cur > 0.0f && cur <= z) continue;
+        // The leaf's midrib a little darker.
+        const float rib = std::abs(v) < 0.15f ? 0.85f : 1.0f;
+        set_pixel(s, x, y, id, bgr * (shade * rib), z);
+      }
+  }
+}
+
+void add_rect(Scene& s, cv::Rect r, int32_t id, cv::Vec3f bgr, float depth) {
+  r &= cv::Rect(cv::Point(0, 0), s.img.id.size());
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) {
+      const float cur = s.img.depth.at<float>(y, x);
+      if (cur > 0.0f && cur <= depth) continue;
+      set_pixel(s, x, y, id, bgr, depth);
+    }
+}
+
+WatercolorParams plain_params() {
+  WatercolorParams p;
+  p.paper_strength = 0;
+  p.turbulence_strength = 0;
+  p.wobble = 0;
+  p.edge_darkening = 0;
+  p.detail = 0;
+  p.paper_color = glm::vec3(1.0f);
+  return p;
+}
+
+float grey(const cv::Mat& bgra, int y, int x) {
+  const cv::Vec4b& v = bgra.at<cv::Vec4b>(y, x);
+  return (float(v[0]) + float(v[1]) + float(v[2])) / 3.0f;
+}
+
+bool identical(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+// Pixels along the row through the centre, from the centre outwards, that lie strictly
+// between the wash and the paper: the width of the edge.
+int edge_width(const cv::Mat& out, cv::Point c) {
+  const float inside = grey(out, c.y, c.x), paper = grey(out, c.y, out.cols - 1);
+  int n = 0;
+  for (int x = c.x; x < out.cols; ++x) {
+    const float g = grey(out, c.y, x);
+    if (g > inside + 2.0f && g < paper - 2.0f) ++n;
+  }
+  return n;
+}
+
+const glm::mat4 kIdentity(1.0f);
+
+TEST(Watercolor, PigmentFormulaFixesBlackAndWhiteAndHalfIsIdentity) {
+  for (float d : {0.0f, 0.5f, 1.0f, 1.5f, 2.0f}) {
+    EXPECT_FLOAT_EQ(pigment_density(0.0f, d), 0.0f);
+    EXPECT_FLOAT_EQ(pigment_density(1.0f, d), 1.0f);
+  }
+  for (float beta : {0.0f, 0.3f, 1.0f})
+    for (float c : {0.0f, 0.1f, 0.37f, 0.5f, 0.9f, 1.0f})
+      EXPECT_FLOAT_EQ(pigment_density(c, texture_density(0.5f, beta)), c);
+  // Denser than 1 darkens, thinner lightens (Bousseau: d > 1 more pigment).
+  EXPECT_LT(pigment_density(0.5f, texture_density(1.0f, 1.0f)), 0.5f);
+  EXPECT_GT(pigment_density(0.5f, texture_density(0.0f, 1.0f)), 0.5f);
+  EXPECT_FLOAT_EQ(pigment_density(0.5f, 2.0f), 0.25f);  // d = 2: c^2, two layers
+}
+
+Scene three_clusters(cv::Size size) {
+  Scene s = empty_scene(size);
+  const float w = float(size.width);
+  add_disc(s, {0.4f * w, 0.45f * w}, 0.22f * w, 7, {0.10f, 0.45f, 0.12f}, 5.0f);
+  add_disc(s, {0.6f * w, 0.5f * w}, 0.2f * w, 3, {0.05f, 0.25f, 0.35f}, 4.0f);
+  add_disc(s, {0.5f * w, 0.65f * w}, 0.15f * w, 12, {0.3f, 0.5f, 0.2f}, 3.0f);
+  return s;
+}
+
+TEST(Watercolor, SameInputsGiveTheSameBytes) {
+  const Scene s = three_clusters({160, 160});
+  const WatercolorParams p;
+  const cv::Mat a = watercolor(s.img, kIdentity, p);
+  const cv::Mat b = watercolor(s.img, kIdentity, p);
+  ASSERT_EQ(a.type(), CV_8UC4);
+  ASSERT_EQ(a.size(), s.img.id.size());
+  EXPECT_TRUE(identical(a, b));
+  WatercolorParams other = p;
+  other.seed = 2;
+  EXPECT_FALSE(identical(a, watercolor(s.img, kIdentity, other)));
+}
+
+TEST(Watercolor, EveryParameterAtBothEndsOfItsRange) {
+  const Scene s = three_clusters({96, 96});
+  WatercolorParams base;
+  ParamSet probe;
+  bind_watercolor_params(probe, base);
+  int checked = 0;
+  for (const ParamSpec& spec : probe.specs()) {
+    if (spec.type != ParamType::Float && spec.type != ParamType::Int) continue;
+    for (double v : {spec.min, spec.max}) {
+      WatercolorParams p;
+      ParamSet set;
+      bind_watercolor_params(set, p);
+      set.set_number(spec.key, v, "test");
+      const cv::Mat out = watercolor(s.img, kIdentity, p);
+      ASSERT_EQ(out.type(), CV_8UC4) << spec.key << " = " << v;
+      ASSERT_EQ(out.size(), s.img.id.size()) << spec.key << " = " << v;
+      EXPECT_TRUE(identical(out, watercolor(s.img, kIdentity, p))) << spec.key << " = " << v;
+      // Opaque, and the scene is still there (not all paper) except when the blur swallows it.
+      cv::Mat ch[4];
+      cv::split(out, ch);
+      EXPECT_EQ(cv::countNonZero(ch[3] != 255), 0) << spec.key;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2 * 9);
+  // Just outside the ranges is refused.
+  WatercolorParams p;
+  ParamSet set;
+  bind_watercolor_params(set, p);
+  EXPECT_THROW(set.set_number("watercolor.edge_softness", 1.01, "test"), InputError);
+  EXPECT_THROW(set.set_number("watercolor.blur", -0.1, "test"), InputError);
+  EXPECT_THROW(set.set_number("watercolor.turbulence_strength", -0.01, "test"), InputError);
+  EXPECT_THROW(set.set_text("watercolor.turbulence_size", "-3%", "test"), InputError);
+  EXPECT_THROW(set.set_text("watercolor.pigment", "gouache", "test"), InputError);
+}
+
+TEST(Watercolor, DiscEdgeWidensWithSoftness) {
+  Scene s = empty_scene({200, 200});
+  add_disc(s, {100, 100}, 50, 5, {0.1f, 0.4f, 0.2f}, 4.0f);
+  std::vector<int> widths;
+  for (float soft : {0.0f, 0.5f, 1.0f}) {
+    WatercolorParams p = plain_params();
+    p.blur = 40;  // px at 1024 px: 7.8 px here
+    p.edge_softness = soft;
+    const cv::Mat out = watercolor(s.img, kIdentity, p);
+    // A blob: the centre is the pigment, the corners paper.
+    EXPECT_LT(grey(out, 100, 100), 200.0f);
+    EXPECT_EQ(grey(out, 0, 0), 255.0f);
+    widths.push_back(edge_width(out, {100, 100}));
+  }
+  EXPECT_LE(widths[0], 3);
+  EXPECT_LT(widths[0], widths[1]);
+  EXPECT_LT(widths[1], widths[2]);
+}
+
+TEST(Watercolor, EdgeDarkeningDarkensTheRim) {
+  Scene s = empty_scene({200, 200});
+  add_disc(s, {100, 100}, 60, 5, {0.2f, 0.5f, 0.3f}, 4.0f);
+  for (float dark : {0.0f, 1.0f}) {
+    WatercolorParams p = plain_params();
+    p.blur = 30;
+    p.edge_darkening = dark;
+    const cv::Mat out = watercolor(s.img, kIdentity, p);
+    float rim = 255;
+    for (int x = 140; x < 175; ++x)
+      rim = std::min(rim, grey(out, 100, x));
+    const float centre = grey(out, 100, 100);
+    if (dark == 0.0f) {
+      EXPECT_GE(rim, centre - 1.0f);
+    } else {
+      EXPECT_LT(rim, centre - 15.0f);
+    }
+  }
+}
+
+TEST(Watercolor, OverlapsAreGlazed) {
+  // A back wash continues under the front one: near their shared border the front wash is
+  // darker than far from it, because the back pigment shows through.
+  Scene s = empty_scene({240, 200});
+  add_disc(s, {80, 100}, 60, 1, {0.2f, 0.6f, 0.9f}, 6.0f);    // back, blue-ish
+  add_disc(s, {160, 100}, 60, 2, {0.8f, 0.5f, 0.15f}, 3.0f);  // front
+  WatercolorParams p = plain_params();
+  p.blur = 40;
+  const cv::Mat out = watercolor(s.img, kIdentity, p);
+  const float near_border = grey(out, 100, 104), far = grey(out, 100, 175);
+  EXPECT_LT(near_border, far - 5.0f);
+}
+
+// Two views of the same world points: positions in view 2 are R * positions in view 1, and
+// view_to_world_2 = view_to_world_1 * R^-1.
+TEST(Watercolor, TurbulenceStaysOnTheWorldWhenTheViewRotates) {
+  Scene s = three_clusters({128, 128});
+  const glm::mat4 v2w1 = glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, -1.0f, 8.0f));
+  const glm::mat4 r = glm::rotate(glm::mat4(1.0f), glm::radians(37.0f), glm::vec3(0, 1, 0.2f));
+  const glm::mat4 v2w2 = v2w1 * glm::inverse(r);
+  cv::Mat pos2 = s.img.position.clone();
+  for (int y = 0; y < pos2.rows; ++y)
+    for (int x = 0; x < pos2.cols; ++x) {
+      cv::Vec3f& v = pos2.at<cv::Vec3f>(y, x);
+      if (s.img.depth.at<float>(y, x) <= 0.0f) continue;
+      const glm::vec3 q = glm::vec3(r * glm::vec4(v[0], v[1], v[2], 1.0f));
+      v = cv::Vec3f(q.x, q.y, q.z);
+    }
+  WatercolorParams p;
+  p.turbulence_size = "0.1";
+  const cv::Mat t1 = watercolor_turbulence(s.img.position, s.img.depth, v2w1, p);
+  const cv::Mat t2 = watercolor_turbulence(pos2, s.img.depth, v2w2, p);
+  const cv::Mat wrong = watercolor_turbulence(pos2, s.img.depth, v2w1, p);
+  const cv::Mat fg = s.img.depth > 0.0f;
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(t1, &lo, &hi, nullptr, nullptr, fg);
+  EXPECT_GT(hi - lo, 0.2);  // the noise varies over the plant
+  EXPECT_LT(cv::norm(t1, t2, cv::NORM_INF, fg), 1e-4);
+  EXPECT_GT(cv::norm(t1, wrong, cv::NORM_INF, fg), 0.05);  // a view-space lookup would swim
+  // The whole pass agrees too (the paper is screen-space, the rest view-independent).
+  p.reference_length = 2.0f;
+  p.turbulence_size = "auto";
+  const cv::Mat a = watercolor(s.img, v2w1, p);
+  WatercolorImages rotated = s.img;
+  rotated.position = pos2;
+  const cv::Mat b = watercolor(rotated, v2w2, p);
+  EXPECT_LE(cv::norm(a, b, cv::NORM_INF), 1.0);
+}
+
+TEST(Watercolor, EmptyIdBufferIsPaperOnly) {
+  const Scene s = empty_scene({64, 48});
+  WatercolorParams p;
+  p.paper_strength = 0;
+  const cv::Mat out = watercolor(s.img, kIdentity, p);
+  const cv::Vec4b first = out.at<cv::Vec4b>(0, 0);
+  EXPECT_NEAR(first[2], std::lround(srgb_encode(p.paper_color.r) * 255.0f), 1);
+  EXPECT_NEAR(first[1], std::lround(srgb_encode(p.paper_color.g) * 255.0f), 1);
+  EXPECT_NEAR(first[0], std::lround(srgb_encode(p.paper_color.b) * 255.0f), 1);
+  EXPECT_EQ(cv::norm(out, cv::Mat(out.size(), CV_8UC4, cv::Scalar(first)), cv::NORM_INF), 0);
+  // With grain the paper has relief but stays close to its colour.
+  p.paper_strength = 1;
+  const cv::Mat grain = watercolor(s.img, kIdentity, p);
+  EXPECT_GT(cv::norm(grain, out, cv::NORM_INF), 0);
+  EXPECT_LE(cv::norm(grain, out, cv::NORM_INF), 20);
+}
+
+TEST(Watercolor, PaperIsGeneratedDeterministicallyOrLoaded) {
+  WatercolorParams p;
+  const cv::Mat a = watercolor_paper({300, 200}, p);
+  ASSERT_EQ(a.type(), CV_32FC1);
+  EXPECT_TRUE(identical(a, watercolor_paper({300, 200}, p)));
+  cv::Scalar mean, sd;
+  cv::meanStdDev(a, mean, sd);
+  EXPECT_NEAR(mean[0], 0.5, 0.02);
+  EXPECT_GT(sd[0], 0.1);
+  p.seed = 9;
+  EXPECT_FALSE(identical(a, watercolor_paper({300, 200}, p)));
+
+  const std::string dir = (std::filesystem::temp_directory_path() / "sylva-water-paper").string();
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/paper.png";
+  cv::Mat tile(40, 50, CV_8UC1);
+  cv::randu(tile, 0, 255);
+  ASSERT_TRUE(cv::imwrite(path, tile));
+  p.paper = path;
+  const cv::Mat loaded = watercolor_paper({1024, 1024}, p);
+  ASSERT_EQ(loaded.size(), cv::Size(1024, 1024));
+  // Tiled at 1 px per px at the reference resolution.
+  EXPECT_TRUE(identical(loaded(cv::Rect(0, 0, 50, 40)), loaded(cv::Rect(50, 40, 50, 40))));
+
+  ParamSet set;
+  WatercolorParams q;
+  bind_watercolor_params(set, q);
+  set.set_text("watercolor.paper", path, "test");
+  EXPECT_EQ(q.paper, path);
+  EXPECT_THROW(set.set_text("watercolor.paper", dir + "/missing.png", "test"), InputError);
+  q.paper = dir + "/missing.png";  // e.g. deleted after the preset was read
+  EXPECT_THROW(watercolor(three_clusters({32, 32}).img, kIdentity, q), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Watercolor, AlbedoPigmentNeedsTheAlbedo) {
+  Scene s = three_clusters({64, 64});
+  WatercolorParams p;
+  p.pigment = "albedo";
+  EXPECT_NO_THROW(watercolor(s.img, kIdentity, p));
+  s.img.albedo.release();
+  EXPECT_THROW(watercolor(s.img, kIdentity, p), InputError);
+}
+
+TEST(Watercolor, DetailFollowsTheBlurredDepthTest) {
+  cv::RNG rng(4);
+  Scene s = empty_scene({200, 200});
+  add_clump(s, rng, {100, 100}, 60, 3, {0.1f, 0.4f, 0.15f}, 5.0f, 300, 12);
+  const cv::Rect inner(80, 80, 40, 40);
+  cv::Scalar m, none, some;
+  WatercolorParams p = plain_params();
+  p.blur = 20;
+  p.detail = 0;
+  cv::meanStdDev(watercolor(s.img, kIdentity, p)(inner), m, none);
+  p.detail = 1;
+  cv::meanStdDev(watercolor(s.img, kIdentity, p)(inner), m, some);
+  EXPECT_LT(none[1], 1.0);
+  EXPECT_GT(some[1], 3.0 * none[1] + 2.0);
+}
+
+TEST(Watercolor, GraphPassReadsOnlyWhatItUses) {
+  const Scene s = three_clusters({64, 64});
+  for (bool turbulence : {false, true}) {
+    RenderGraph g;
+    WatercolorResources res;
+    res.color = g.resource("color");
+    res.albedo = g.resource("albedo");
+    res.id = g.resource("id");
+    res.depth = g.resource("depth");
+    res.position = g.resource("position");
+    auto source = [&](const char* name, int r, cv::Mat m) {
+      g.add_pass(std::string("make ") + name, {}, {r},
+                 [r, m](PassContext& ctx) { ctx.write(r, m); });
+    };
+    source("color", res.color, s.img.color);
+    source("albedo", res.albedo, s.img.albedo);
+    source("id", res.id, s.img.id);
+    source("depth", res.depth, s.img.depth);
+    source("position", res.position, s.img.position);
+    WatercolorParams p;
+    p.turbulence_strength = turbulence ? 0.5f : 0.0f;
+    const int out = add_watercolor_pass(g, res, kIdentity, p);
+    EXPECT_EQ(g.resource_name(out), "watercolor");
+    g.present(out);
+    g.compile();
+    EXPECT_FALSE(g.pass_live("make albedo"));
+    EXPECT_EQ(g.pass_live("make position"), turbulence);
+    g.execute();
+    EXPECT_TRUE(identical(g.get<cv::Mat>(out), watercolor(s.img, kIdentity, p)));
+  }
+}
+
+// --- Looking at it ------------------------------------------------------------------------
+
+Scene synthetic_tree(cv::Size size, int clusters, int leaves_per_cluster, uint64_t seed) {
+  Scene s = empty_scene(size);
+  cv::RNG rng(seed);
+  const float w = float(size.width), h = float(size.height);
+  // Trunk and two limbs (one shared non-foliage id).
+  const cv::Vec3f bark(0.05f, 0.08f, 0.12f);
+  add_rect(s, cv::Rect(int(0.47f * w), int(0.55f * h), int(0.06f * w), int(0.45f * h)), 1000, bark,
+           6.0f);
+  add_rect(s, cv::Rect(int(0.36f * w), int(0.52f * h), int(0.12f * w), int(0.018f * h)), 1000, bark,
+           6.1f);
+  add_rect(s, cv::Rect(int(0.52f * w), int(0.47f * h), int(0.14f * w), int(0.018f * h)), 1000, bark,
+           5.9f);
+  for (int c = 0; c < clusters; ++c) {
+    const float a = rng.uniform(0.0f, 6.2831853f);
+    const float r = std::sqrt(rng.uniform(0.0f, 1.0f));
+    const cv::Point2f centre(0.5f * w + 0.33f * w * r * std::cos(a),
+                             0.42f * h + 0.3f * h * r * std::sin(a));
+    const float radius = w * rng.uniform(0.05f, 0.09f);
+    const float depth = rng.uniform(4.0f, 8.0f);
+    // Nearer clusters lighter and warmer, as the Luft illumination makes them.
+    const float light = 0.6f + 0.5f * (8.0f - depth) / 4.0f;
+    const cv::Vec3f green(rng.uniform(0.02f, 0.06f) * light, rng.uniform(0.16f, 0.3f) * light,
+                          rng.uniform(0.05f, 0.14f) * light);
+    add_clump(s, rng, centre, radius, c + 1, green, depth, leaves_per_cluster,
+              w * rng.uniform(0.012f, 0.02f));
+  }
+  return s;
+}
+
+TEST(Watercolor, Look) {
+  const char* dir = std::getenv("SYLVA_WATER_LOOK");
+  if (!dir) GTEST_SKIP() << "set SYLVA_WATER_LOOK=<folder> to write the look images";
+  std::filesystem::create_directories(dir);
+  const std::string d = dir;
+  auto save = [&](const std::string& name, const cv::Mat& m) {
+    ASSERT_TRUE(cv::imwrite(d + "/" + name, m));
+  };
+  {
+    Scene s = empty_scene({600, 450});
+    add_disc(s, {230, 210}, 130, 1, {0.55f, 0.25f, 0.05f}, 6.0f);
+    add_disc(s, {370, 230}, 120, 2, {0.05f, 0.35f, 0.75f}, 4.0f);
+    add_disc(s, {300, 320}, 90, 3, {0.15f, 0.55f, 0.25f}, 3.0f);
+    WatercolorParams p;
+    save("discs.png", watercolor(s.img, kIdentity, p));
+    p.edge_softness = 1.0f;
+    save("discs_soft.png", watercolor(s.img, kIdentity, p));
+    p.edge_softness = 0.0f;
+    save("discs_hard.png", watercolor(s.img, kIdentity, p));
+    cv::Mat color;
+    cv::cvtColor(s.img.color, color, cv::COLOR_BGRA2BGR);
+    save("discs_input.png", color);
+  }
+  {
+    const Scene s = synthetic_tree({1024, 1024}, 64, 700, 11);
+    cv::Mat color;
+    cv::cvtColor(s.img.color, color, cv::COLOR_BGRA2BGR);
+    save("tree_input.png", color);
+    WatercolorParams p;
+    p.reference_length = 3.0f;
+    (void)watercolor(s.img, kIdentity, p);  // warm-up
+    // CPU time on one thread is what a loaded machine still measures reliably; wall time on
+    // all threads is printed too.
+    auto cpu_ms = [] {
+      timespec t{};
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+      return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+    };
+    cv::Mat out;
+    for (int threads : {1, cv::getNumberOfCPUs()}) {
+      const int before = cv::getNumThreads();
+      cv::setNumThreads(threads);
+      std::vector<double> wall, cpu;
+      for (int i = 0; i < 5; ++i) {
+        const double c0 = cpu_ms();
+        const auto t0 = std::chrono::steady_clock::now();
+        out = watercolor(s.img, kIdentity, p);
+        wall.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
+        cpu.push_back(cpu_ms() - c0);
+      }
+      cv::setNumThreads(before);
+      std::sort(wall.begin(), wall.end());
+      std::sort(cpu.begin(), cpu.end());
+      std::printf(
+          "watercolor 1024x1024, 64 clusters, %d thread(s): median wall %.1f ms, CPU %.1f ms\n",
+          threads, wall[2], cpu[2]);
+    }
+    save("tree.png", out);
+    // 2x crops to judge grain, rims, wobble and detail.
+    const cv::Rect crop(470, 280, 300, 300);
+    auto zoom = [&](const cv::Mat& m) {
+      cv::Mat z;
+      cv::resize(m(crop), z, cv::Size(), 2, 2, cv::INTER_NEAREST);
+      return z;
+    };
+    save("crop_tree.png", zoom(out));
+    save("crop_input.png", zoom(color));
+    p.edge_softness = 0.9f;
+    p.blur = 8;
+    const cv::Mat wet = watercolor(s.img, kIdentity, p);
+    save("tree_wet.png", wet);
+    save("crop_wet.png", zoom(wet));
+    p = WatercolorParams();
+    p.reference_length = 3.0f;
+    p.detail = 1.0f;
+    p.blur = 3;
+    const cv::Mat detailed = watercolor(s.img, kIdentity, p);
+    save("tree_detail.png", detailed);
+    save("crop_detail.png", zoom(detailed));
+  }
+}
+
+}  // namespace
+}  // namespace sylva::test
