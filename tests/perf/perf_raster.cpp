@@ -1,6 +1,6 @@
 // Benchmarks for the foundation: the raster pass alone on sample trees of 10k, 100k and 1M
-// leaves at 512² and 1024² with 1 target (colour), 5 (colour, normal, depth, id, ka) and all 6
-// (the full G-buffer, adding position), and
+// leaves at 512² and 1024² with 1 target (colour), 5 (colour, normal, depth, id, ka) and every
+// target (argument 6: the full G-buffer, adding position and albedo), and
 // loading a written .glb. Reports medians (run with --benchmark_repetitions) and the
 // process's peak RSS so far as a counter.
 #include <benchmark/benchmark.h>
