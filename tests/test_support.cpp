@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -92,6 +93,10 @@ RunResult validate_gltf(const std::string& path) {
 
 bool gltf_validator_installed() {
   return fs::exists(source_dir() + "/tests/tools/node_modules/gltf-validator/package.json");
+}
+
+int count_lines(const std::string& s) {
+  return int(std::count(s.begin(), s.end(), '\n'));
 }
 
 std::string read_file(const std::string& path) {

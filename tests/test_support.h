@@ -27,6 +27,9 @@ RunResult validate_gltf(const std::string& path);
 // Whether scripts/setup.sh installed the validator (npm, tests/tools/node_modules).
 bool gltf_validator_installed();
 
+// The number of newlines in s (one-line error messages are checked with it).
+int count_lines(const std::string& s);
+
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& bytes);
 bool file_exists(const std::string& path);

@@ -18,10 +18,6 @@ using Json = nlohmann::json;
 
 constexpr float kKaMin = 0.3f;
 
-int count_lines(const std::string& s) {
-  return int(std::count(s.begin(), s.end(), '\n'));
-}
-
 // A small sample tree, generated once per test program.
 const std::string& tree() {
   static const std::string path = [] {

@@ -13,13 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int count_lines(const std::string& s) {
-  int n = 0;
-  for (char c : s)
-    n += c == '\n';
-  return n;
-}
-
 // Exit 2, a single "sylva: error:" line that mentions `needle`.
 void expect_input_error(const std::string& args, const std::string& needle) {
   RunResult r = run_sylva(args);

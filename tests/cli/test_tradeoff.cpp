@@ -13,13 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int count_lines(const std::string& s) {
-  int n = 0;
-  for (char c : s)
-    n += c == '\n';
-  return n;
-}
-
 const std::string& tradeoff_tree() {
   static std::string path = [] {
     std::string p = temp_dir("tradeoff-tree") + "/tree.glb";
