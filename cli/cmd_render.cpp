@@ -1,7 +1,5 @@
 // sylva render SCENE [--style S] [view options] [--graph G.dot] -o OUT.png
 // sylva buffers SCENE --out-dir DIR [--buffers color,normal,...] [--id KIND] [view options]
-#include <malloc.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "cli/frame.h"
 #include "cli/illumination_options.h"
 #include "core/error.h"
 #include "core/gl/raster_pass.h"
@@ -43,35 +42,6 @@ void check_output_path(const std::string& option, const std::string& path,
 }
 
 namespace {
-
-// Everything a frame needs: the loaded scene, a GL context and an uploaded rasteriser.
-struct Frame {
-  Scene scene;
-  std::unique_ptr<GlContext> context;
-  std::unique_ptr<Rasterizer> rasterizer;
-  RasterSetup setup;
-};
-
-std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
-  resolve_view_options(vo);
-  auto f = std::make_unique<Frame>();
-  f->scene = load_scene_for_cli(so);
-  f->setup.camera = make_orbit_camera(f->scene.framing_sphere(), vo.orbit, vo.width, vo.height);
-  f->context = create_gl_context();
-  f->rasterizer = std::make_unique<Rasterizer>(*f->context);
-  f->rasterizer->upload(f->scene);
-  f->setup.rasterizer = f->rasterizer.get();
-  f->setup.lighting = lighting_for(vo);
-  f->setup.request = raster_request(vo);
-  return f;
-}
-
-// The graph's results are plain images: drop the scene, the GL objects and the context
-// before encoding files, and hand freed heap back, so peak memory is not their sum.
-void release_frame(std::unique_ptr<Frame>& frame) {
-  frame.reset();
-  malloc_trim(0);
-}
 
 // The raster pass, fed by the Luft preprocessing node when `mode` asks for it; the node is
 // always declared, so compile() is what culls it for the original normals.
@@ -110,29 +80,6 @@ std::string camera_json(const Camera& c) {
 
 }  // namespace
 
-// The style named by --style with the --set overrides and the foliage options given
-// explicitly on the command line applied (in that order); `io` receives the resulting foliage
-// settings with the run-only ones (--surface-out, cache) kept.
-std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& name,
-                                     const std::vector<std::string>& sets,
-                                     IlluminationOptions& io) {
-  auto style = std::make_unique<Style>(name, sets);
-  apply_explicit_illumination_options(cmd, style->set());
-  const IlluminationOptions run = io;
-  io = style->params().foliage;
-  io.surface_out = run.surface_out;
-  io.no_cache = run.no_cache;
-  io.cache_dir = run.cache_dir;
-  return style;
-}
-
-void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets) {
-  cmd.add_option("--style", style, "A built-in style (sylva styles) or a preset file .toml")
-      ->capture_default_str();
-  cmd.add_option("--set", sets,
-                 "Override a style parameter: section.key=value (repeatable; see sylva styles)");
-}
-
 Action add_render_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
@@ -155,28 +102,14 @@ Action add_render_command(CLI::App& app) {
     check_output_path("--output", o->out, {".png", ".jpg", ".jpeg"});
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view);
-    style->configure(frame->setup.request);
     RenderGraph graph;
-    GBufferHandles gb =
-        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, style->normals());
-    StyleContext context;
-    context.lighting = frame->setup.lighting;
-    context.view = frame->setup.camera.view;
-    context.background = frame->setup.request.background;
-    context.foliage_diagonal = frame->scene.bounds(Role::Foliage).diagonal();
-    int out = style->build(graph, gb, context);
-    graph.present(out);
+    const SheetPlan plan =
+        add_sheet_passes(graph, {style.get()}, sheet_scene(*frame, o->illumination, o->scene.seed));
     graph.compile();
     write_graph(o->graph, graph);
     graph.execute();
     release_frame(frame);
-    cv::Mat image = graph.get<cv::Mat>(out);
-    if (o->out.ends_with(".jpg") || o->out.ends_with(".jpeg")) {
-      cv::Mat bgr;
-      cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
-      image = bgr;
-    }
-    write_image(o->out, image);
+    write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]));
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
                 style->info().name.c_str());
   };

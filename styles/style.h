@@ -71,6 +71,7 @@ class Style {
   StyleParams& params() { return m_params; }
   const StyleParams& params() const { return m_params; }
   ParamSet& set() { return m_set; }
+  const ParamSet& set() const { return m_set; }
   NormalMode normals() const;
   // What this style needs of the raster pass besides the targets it reads: the id kind and
   // flat albedo.

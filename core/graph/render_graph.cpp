@@ -26,7 +26,19 @@ void PassContext::write(int resource, std::any value) {
   if (m_graph.is_live(resource)) m_graph.m_resources[resource].value = std::move(value);
 }
 
-int RenderGraph::resource(const std::string& name) {
+GraphScope::GraphScope(RenderGraph& graph, const std::string& name)
+    : m_graph(graph), m_previous(graph.m_scope) {
+  SYLVA_CHECK(!name.empty() && name.find('/') == std::string::npos,
+              "render graph: bad scope name '" + name + "'");
+  m_graph.m_scope += name + "/";
+}
+
+GraphScope::~GraphScope() {
+  m_graph.m_scope = m_previous;
+}
+
+int RenderGraph::resource(const std::string& local_name) {
+  const std::string name = m_scope + local_name;
   int found = find_resource(name);
   if (found >= 0) return found;
   Resource r;
@@ -46,8 +58,9 @@ const std::string& RenderGraph::resource_name(int resource) const {
   return m_resources.at(resource).name;
 }
 
-int RenderGraph::add_pass(const std::string& name, std::vector<int> reads, std::vector<int> writes,
-                          Run run) {
+int RenderGraph::add_pass(const std::string& local_name, std::vector<int> reads,
+                          std::vector<int> writes, Run run) {
+  const std::string name = m_scope + local_name;
   SYLVA_CHECK(!has_pass(name), "render graph: duplicate pass '" + name + "'");
   int id = static_cast<int>(m_passes.size());
   for (int r : reads) {
@@ -93,7 +106,7 @@ void RenderGraph::compile() {
   m_compiled = true;
 }
 
-void RenderGraph::execute() {
+void RenderGraph::execute(const std::function<void(const std::string&)>& after_pass) {
   if (!m_compiled) compile();
   for (size_t p = 0; p < m_passes.size(); ++p) {
     Pass& pass = m_passes[p];
@@ -108,6 +121,7 @@ void RenderGraph::execute() {
       Resource& res = m_resources[r];
       if (--res.pending_reads == 0 && !res.presented) res.value.reset();
     }
+    if (after_pass) after_pass(pass.name);
   }
 }
 

@@ -4,6 +4,8 @@
 // A pass asks PassContext::wanted() which of its outputs are live, so a multi-output pass
 // (the raster pass) produces only those. Passes must be added in dependency order (a pass
 // reads only what earlier passes write); resources hold any copyable value (std::any).
+// A scope (GraphScope) prefixes the names a builder gives, so one graph can hold several
+// copies of the same passes, e.g. one style chain per cell of a contact sheet.
 #pragma once
 
 #include <any>
@@ -41,15 +43,21 @@ class RenderGraph {
  public:
   using Run = std::function<void(PassContext&)>;
 
-  // Declares a resource, or returns the existing one with this name.
+  // Declares a resource, or returns the existing one with this name (scope prefix included).
   int resource(const std::string& name);
+  // The pass is named scope() + name.
   int add_pass(const std::string& name, std::vector<int> reads, std::vector<int> writes, Run run);
   void present(int resource);
 
   void compile();
-  void execute();
+  // after_pass (optional) is called with each live pass's full name once it has run, e.g.
+  // to report progress over live_passes().
+  void execute(const std::function<void(const std::string&)>& after_pass = {});
 
   bool compiled() const { return m_compiled; }
+  // "" or "a/" or "a/b/": what resource() and add_pass() put in front of names. The lookups
+  // below (find_resource, has_pass, pass_live, resource_name) use full names.
+  const std::string& scope() const { return m_scope; }
   bool is_live(int resource) const;
   bool pass_live(const std::string& name) const;
   bool has_pass(const std::string& name) const;
@@ -87,6 +95,22 @@ class RenderGraph {
   std::vector<Resource> m_resources;
   std::vector<Pass> m_passes;
   bool m_compiled = false;
+  std::string m_scope;
+  friend class GraphScope;
+};
+
+// While alive, names in `graph` get "name/" appended to the enclosing scope. name must be
+// non-empty and free of '/'.
+class GraphScope {
+ public:
+  GraphScope(RenderGraph& graph, const std::string& name);
+  ~GraphScope();
+  GraphScope(const GraphScope&) = delete;
+  GraphScope& operator=(const GraphScope&) = delete;
+
+ private:
+  RenderGraph& m_graph;
+  std::string m_previous;
 };
 
 }  // namespace sylva

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/load.h"
+#include "tests/cli/cli_support.h"
 #include "tests/test_support.h"
 
 namespace sylva::test {
@@ -182,11 +183,7 @@ TEST(Bake, BadInputWritesNothing) {
       {"bake " + tree() + " --surface-out " + out + " -o " + out, "--surface-out"},
   };
   for (const auto& [args, needle] : cases) {
-    const RunResult r = run_sylva(args);
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
-    EXPECT_EQ(count_lines(r.output), 1) << args << "\n" << r.output;
-    EXPECT_EQ(r.output.rfind("sylva: error: ", 0), 0u) << r.output;
-    EXPECT_NE(r.output.find(needle), std::string::npos) << args << "\n" << r.output;
+    expect_input_error(args, needle);
     EXPECT_FALSE(file_exists(out)) << args;
     EXPECT_FALSE(file_exists(dir + "/out.png")) << args;
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
+#include "tests/cli/cli_support.h"
 #include "tests/test_support.h"
 
 namespace sylva::test {
@@ -75,12 +76,7 @@ TEST(Tradeoff, BadInputWritesNothing) {
             "--plot"},
            {"tradeoff " + tradeoff_tree() + out, "--study"},
        }) {
-    const RunResult r = run_sylva(c.args);
-    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.output;
-    EXPECT_EQ(count_lines(r.output), 1) << c.args << "\n" << r.output;
-    EXPECT_EQ(r.output.rfind("sylva: error: ", 0), 0u) << r.output;
-    EXPECT_NE(r.output.find(c.needle), std::string::npos)
-        << "expected '" << c.needle << "' in " << r.output;
+    expect_input_error(c.args, c.needle);
   }
   EXPECT_TRUE(fs::is_empty(dir)) << "an output was left behind";
 }

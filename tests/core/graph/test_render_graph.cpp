@@ -90,6 +90,48 @@ TEST(RenderGraph, DotExportMarksCulledNodes) {
   EXPECT_NE(dot.find("peripheries=2"), std::string::npos);
 }
 
+// Two copies of the same builder in one graph (a contact sheet): scopes keep their names
+// apart, both read the shared input, and only the presented copy runs.
+TEST(RenderGraph, ScopesSeparateCopiesOfABuilder) {
+  RenderGraph g;
+  const int in = g.resource("in");
+  g.add_pass("source", {}, {in}, [in](PassContext& c) { c.write(in, 2); });
+  auto builder = [&](int factor) {
+    const int out = g.resource("out");
+    g.add_pass("scale", {in}, {out},
+               [in, out, factor](PassContext& c) { c.write(out, c.read<int>(in) * factor); });
+    return out;
+  };
+  int a = -1, b = -1;
+  {
+    GraphScope scope(g, "a");
+    a = builder(3);
+    EXPECT_EQ(g.scope(), "a/");
+    {
+      GraphScope inner(g, "x");
+      EXPECT_EQ(g.scope(), "a/x/");
+    }
+  }
+  {
+    GraphScope scope(g, "b");
+    b = builder(5);
+  }
+  EXPECT_EQ(g.scope(), "");
+  EXPECT_NE(a, b);
+  EXPECT_EQ(g.resource_name(a), "a/out");
+  EXPECT_EQ(g.find_resource("b/out"), b);
+  EXPECT_EQ(g.resource("in"), in);  // outside a scope the name is the plain one
+  g.present(b);
+  g.compile();
+  EXPECT_FALSE(g.pass_live("a/scale"));
+  EXPECT_TRUE(g.pass_live("b/scale"));
+  std::string ran;
+  g.execute([&](const std::string& pass) { ran += pass + ";"; });
+  EXPECT_EQ(ran, "source;b/scale;");
+  EXPECT_EQ(g.live_passes().size(), 2u);
+  EXPECT_EQ(g.get<int>(b), 10);
+}
+
 TEST(RenderGraph, ReadingBeforeWritingIsAProgrammingError) {
   RenderGraph g;
   int a = g.resource("a");

@@ -1,0 +1,49 @@
+// What the rendering commands (render, buffers, compare) share: the loaded and uploaded
+// scene of one view, the style options, and turning a style's image into a file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/common_options.h"
+#include "cli/illumination_options.h"
+#include "core/gl/raster_pass.h"
+#include "styles/sheet.h"
+#include "styles/style.h"
+
+namespace sylva::cli {
+
+// Everything a frame needs: the loaded scene, a GL context and an uploaded rasteriser.
+struct Frame {
+  Scene scene;
+  std::unique_ptr<GlContext> context;
+  std::unique_ptr<Rasterizer> rasterizer;
+  RasterSetup setup;
+};
+
+// Resolves the view options, loads the scene and uploads it.
+std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo);
+// The graph's results are plain images: drop the scene, the GL objects and the context
+// before encoding files, and hand freed heap back, so peak memory is not their sum.
+void release_frame(std::unique_ptr<Frame>& frame);
+
+// --style NAME|FILE.toml and --set section.key=value (repeatable).
+void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets);
+
+// The style named by --style with the --set overrides and the foliage options given
+// explicitly on the command line applied (in that order); `io` receives the resulting foliage
+// settings with the run-only ones (--surface-out, cache) kept.
+std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& name,
+                                     const std::vector<std::string>& sets, IlluminationOptions& io);
+
+// The frame as a contact sheet's shared scene; `run` supplies the run-only foliage options
+// (cache, --surface-out) and the seed comes from the scene options.
+SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint64_t seed);
+
+// Writes a style's BGRA image as .png (with alpha) or .jpg (alpha dropped), atomically.
+void write_styled_image(const std::string& path, const cv::Mat& bgra);
+
+}  // namespace sylva::cli

@@ -1,0 +1,177 @@
+#include "styles/sheet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr size_t kMaxCells = 256;
+
+struct Sweep {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+Sweep parse_sweep(const std::string& text) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--sweep", "'" + text + "' is not section.key=v1,v2,...");
+  Sweep s;
+  s.key = text.substr(0, eq);
+  std::stringstream values(text.substr(eq + 1));
+  for (std::string v; std::getline(values, v, ',');) {
+    if (v.empty()) throw InputError("--sweep", "'" + text + "' has an empty value");
+    s.values.push_back(v);
+  }
+  if (s.values.empty()) throw InputError("--sweep", "'" + text + "' lists no values");
+  return s;
+}
+
+std::string foliage_key(const Style& style) {
+  std::string key;
+  for (const ParamSpec& spec : style.set().specs())
+    if (spec.key.starts_with("foliage."))
+      key += spec.key + "=" + style.set().value_text(spec.key) + ";";
+  return key;
+}
+
+// What a style asks of the raster pass, as a comparable text.
+std::string raster_key(const Style& style, const RasterRequest& request, NormalMode mode) {
+  std::ostringstream k;
+  k << static_cast<int>(mode) << '|' << request.flat_albedo << '|'
+    << static_cast<int>(request.id_kind) << '|' << request.background.r << ','
+    << request.background.g << ',' << request.background.b << ',' << request.background.a;
+  if (mode != NormalMode::Original) k << '|' << foliage_key(style);
+  return k.str();
+}
+
+}  // namespace
+
+std::vector<SheetEntry> expand_sheet(const std::vector<std::string>& styles,
+                                     const std::vector<std::string>& sets,
+                                     const std::vector<std::string>& sweeps) {
+  if (styles.empty()) throw InputError("--styles", "name at least one style");
+  for (const std::string& s : styles)
+    if (s.empty()) throw InputError("--styles", "empty style name in the list");
+  std::vector<Sweep> parsed;
+  for (const std::string& text : sweeps) {
+    Sweep s = parse_sweep(text);
+    for (const Sweep& other : parsed)
+      if (other.key == s.key) throw InputError("--sweep", "'" + s.key + "' is swept twice");
+    parsed.push_back(std::move(s));
+  }
+  size_t cells = styles.size();
+  for (const Sweep& s : parsed) {
+    cells *= s.values.size();
+    if (cells > kMaxCells)
+      throw InputError("--sweep",
+                       "the sheet would have more than " + std::to_string(kMaxCells) + " cells");
+  }
+  std::vector<SheetEntry> entries;
+  for (const std::string& style : styles) {
+    std::vector<size_t> at(parsed.size(), 0);
+    for (;;) {
+      SheetEntry e;
+      e.style = style;
+      e.sets = sets;
+      for (size_t i = 0; i < parsed.size(); ++i) {
+        const std::string a = parsed[i].key + "=" + parsed[i].values[at[i]];
+        e.sets.push_back(a);
+        e.swept.push_back(a);
+      }
+      entries.push_back(std::move(e));
+      size_t i = parsed.size();
+      while (i > 0 && ++at[i - 1] == parsed[i - 1].values.size())
+        at[--i] = 0;
+      if (i == 0) break;
+    }
+  }
+  return entries;
+}
+
+int sheet_columns(size_t n, const std::vector<std::string>& sweeps) {
+  SYLVA_CHECK(n >= 1, "sheet_columns: no cells");
+  if (!sweeps.empty()) return static_cast<int>(parse_sweep(sweeps.back()).values.size());
+  return static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)) - 1e-9));
+}
+
+std::vector<std::unique_ptr<Style>> build_sheet_styles(
+    const std::vector<SheetEntry>& entries,
+    const std::function<void(ParamSet&)>& explicit_options) {
+  std::vector<std::unique_ptr<Style>> styles;
+  for (const SheetEntry& e : entries) {
+    auto style = std::make_unique<Style>(e.style);
+    if (explicit_options) explicit_options(style->set());
+    for (const std::string& a : e.sets)
+      apply_assignment(a, style->set(), "--set");
+    styles.push_back(std::move(style));
+  }
+  return styles;
+}
+
+std::vector<std::string> changed_parameters(const Style& style,
+                                            const std::vector<std::string>& skip) {
+  std::vector<std::string> out;
+  for (const ParamSpec& spec : style.set().specs()) {
+    if (std::find(skip.begin(), skip.end(), spec.key) != skip.end()) continue;
+    const std::string value = style.set().value_text(spec.key);
+    if (value != spec.default_text) out.push_back(spec.key + "=" + value);
+  }
+  return out;
+}
+
+SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
+                           const SheetScene& scene) {
+  SYLVA_CHECK(!styles.empty(), "add_sheet_passes: no styles");
+  const bool scoped = styles.size() > 1;
+  auto scope = [&](const std::string& name) {
+    return scoped ? std::make_unique<GraphScope>(graph, name) : nullptr;
+  };
+  std::map<std::string, int> foliage;             // foliage key -> vertex-shading
+  std::map<std::string, GBufferHandles> rasters;  // raster key -> its targets
+  std::map<std::string, RasterRequest> requests;  // raster key -> its request
+  SheetPlan plan;
+  for (size_t i = 0; i < styles.size(); ++i) {
+    const Style& style = *styles[i];
+    RasterSetup setup = scene.raster;
+    style.configure(setup.request);
+    const NormalMode mode = style.normals();
+    setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
+    // Declared for every style, so compile() is what culls the preprocessing of styles that
+    // keep the model's normals (and the graph's .dot shows it culled).
+    const std::string fkey = foliage_key(style);
+    if (!foliage.contains(fkey)) {
+      auto s = scope("foliage-" + std::to_string(foliage.size()));
+      foliage[fkey] = add_foliage_illumination_pass(graph, scene.foliage(style.params().foliage));
+    }
+    const std::string rkey = raster_key(style, setup.request, mode);
+    if (!rasters.contains(rkey)) {
+      if (mode != NormalMode::Original) setup.shading = foliage[fkey];
+      auto s = scope("raster-" + std::to_string(rasters.size()));
+      rasters[rkey] = add_raster_pass(graph, setup);
+      requests[rkey] = setup.request;
+    }
+    StyleContext context;
+    context.lighting = setup.lighting;
+    context.view = setup.camera.view;
+    context.background = requests[rkey].background;
+    context.foliage_diagonal = scene.foliage_diagonal;
+    auto s = scope("cell-" + std::to_string(i));
+    const int out = style.build(graph, rasters[rkey], context);
+    graph.present(out);
+    plan.outputs.push_back(out);
+  }
+  plan.raster_passes = static_cast<int>(rasters.size());
+  graph.compile();
+  for (const auto& [key, resource] : foliage)
+    plan.foliage_passes += graph.is_live(resource) ? 1 : 0;
+  return plan;
+}
+
+}  // namespace sylva

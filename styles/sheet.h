@@ -1,0 +1,67 @@
+// Contact sheets (DESIGN.md §2): several styles, or one style with swept parameters, rendered
+// from one scene in one render graph. Styles that ask the same of the raster pass share it
+// (same normals, id kind, albedo and clear colour), styles with the same foliage.* settings
+// share the Luft preprocessing, and each style's image passes get a graph scope of their
+// own. `sylva render` is the one-style case of the same plan.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "styles/style.h"
+
+namespace sylva {
+
+struct SheetEntry {
+  std::string style;               // built-in preset name or .toml path
+  std::vector<std::string> sets;   // "section.key=value", applied after the preset in order
+  std::vector<std::string> swept;  // this cell's sweep assignments (also the last of `sets`)
+};
+
+// The --styles list times the cartesian product of the sweeps ("section.key=v1,v2,..."; the
+// last sweep varies fastest). `sets` (the --set overrides) come before a cell's sweep values.
+// Throws InputError("--styles" / "--sweep", ...) for an empty list or value, a sweep without
+// '=' or values, a key swept twice, or more than 256 cells; the values themselves are checked
+// when the styles are built.
+std::vector<SheetEntry> expand_sheet(const std::vector<std::string>& styles,
+                                     const std::vector<std::string>& sets,
+                                     const std::vector<std::string>& sweeps);
+
+// Cells per row: the value count of the last sweep when there is one (so a two-key sweep is
+// a table, Luft Fig. 3), else ceil(sqrt(n)). n >= 1.
+int sheet_columns(size_t n, const std::vector<std::string>& sweeps);
+
+// The builds of `entries` with the command's foliage options (`explicit_options`, may be
+// empty) applied between the preset and the entry's sets. Throws InputError.
+std::vector<std::unique_ptr<Style>> build_sheet_styles(
+    const std::vector<SheetEntry>& entries, const std::function<void(ParamSet&)>& explicit_options);
+
+// "key=value" for every parameter the style holds at another value than the built-in
+// default, in `sylva styles` order; keys in `skip` are left out.
+std::vector<std::string> changed_parameters(const Style& style,
+                                            const std::vector<std::string>& skip = {});
+
+// What every cell shares: the uploaded scene and view.
+struct SheetScene {
+  RasterSetup raster;      // rasteriser, camera, lighting; request = the view's base request
+  float foliage_diagonal;  // scene units (StyleContext::foliage_diagonal)
+  // The Luft preprocessing for one style's foliage settings (parsed against the scene).
+  std::function<IlluminationSetup(const FoliageSettings&)> foliage;
+};
+
+struct SheetPlan {
+  std::vector<int> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented
+  int raster_passes = 0;     // distinct raster configurations
+  int foliage_passes = 0;    // Luft preprocessings that run (distinct settings read)
+};
+
+// Adds the passes of every style to `graph`, presents their images and compiles. With one style
+// nothing is scoped (pass names as in a plain render); with several, style i's passes live
+// in scope "cell-i", raster configuration j in "raster-j", foliage settings k in
+// "foliage-k".
+SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
+                           const SheetScene& scene);
+
+}  // namespace sylva
