@@ -51,6 +51,7 @@ SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint6
   SheetScene s;
   s.raster = frame.setup;
   s.foliage_diagonal = frame.scene.bounds(Role::Foliage).diagonal();
+  s.scene_sphere = frame.scene.framing_sphere();
   const Scene* scene = &frame.scene;
   s.foliage = [run, seed, scene](const FoliageSettings& settings) {
     IlluminationOptions io = settings;

@@ -183,6 +183,9 @@ void validate_toon_params(const ToonParams& p) {
   check_range("toon.specular_threshold", p.specular_threshold, 0.0f, 1.0f);
   check_range("toon.specular_strength", p.specular_strength, 0.0f, 1.0f);
   check_range("toon.shadow_bias", p.shadow_bias, 0.0f, kMaxBias);
+  if (!(p.shadow_map_size >= 64 && p.shadow_map_size <= 8192))
+    throw InputError("toon.shadow_map_size",
+                     std::to_string(p.shadow_map_size) + " is outside [64, 8192] px");
 }
 
 std::vector<float> toon_thresholds(const ToonParams& p) {
@@ -281,6 +284,8 @@ void bind_toon_params(ParamSet& set, ToonParams& p) {
                "shadows cast by the key light (from a shadow map)");
   set.add_float("toon.shadow_bias", p.shadow_bias, 0.0, kMaxBias, "shadow-map texels",
                 "depth bias against self-shadowing, scaled by the slope");
+  set.add_int("toon.shadow_map_size", p.shadow_map_size, 64, 8192, "px",
+              "side of the square shadow map rendered from the key light");
 }
 
 cv::Mat toon_shade_linear(const ToonImages& in, const Lighting& lights, const glm::mat4& view,

@@ -80,6 +80,9 @@ struct ToonParams {
   // toon.shadow_bias: depth bias against self-shadowing, in shadow-map texels, scaled by the
   // slope (1 + tan of the light's incidence angle); [0, 8]; default 1.5.
   float shadow_bias = 1.5f;
+  // toon.shadow_map_size: side of the square shadow map the style renders from the key light,
+  // in pixels; [64, 8192]; default 2048 (a texel is then ~1/1000 of the scene's diameter).
+  int shadow_map_size = 2048;
 };
 
 // A depth image rendered from the key light's camera, as the raster pass's depth target:

@@ -162,6 +162,8 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.view = setup.camera.view;
     context.background = requests[rkey].background;
     context.foliage_diagonal = scene.foliage_diagonal;
+    context.rasterizer = setup.rasterizer;
+    context.scene_sphere = scene.scene_sphere;
     auto s = scope("cell-" + std::to_string(i));
     const int out = style.build(graph, rasters[rkey], context);
     graph.present(out);

@@ -45,8 +45,9 @@ std::vector<std::string> changed_parameters(const Style& style,
 
 // What every cell shares: the uploaded scene and view.
 struct SheetScene {
-  RasterSetup raster;      // rasteriser, camera, lighting; request = the view's base request
-  float foliage_diagonal;  // scene units (StyleContext::foliage_diagonal)
+  RasterSetup raster;          // rasteriser, camera, lighting; request = the view's base request
+  float foliage_diagonal = 0;  // scene units (StyleContext::foliage_diagonal)
+  Sphere scene_sphere;         // StyleContext::scene_sphere
   // The Luft preprocessing for one style's foliage settings (parsed against the scene).
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;
 };

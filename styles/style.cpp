@@ -10,17 +10,57 @@ int build_shaded(RenderGraph&, const GBufferHandles& gbuffer, const StyleParams&
   return gbuffer.color;
 }
 
+namespace {
+
+// The key light's shadow map: the scene's depth seen from the light (toon_key_light), as a
+// resource holding a ToonShadowMap. A headlight (no lights) casts no visible shadow, so it
+// gets an empty map.
+int add_key_shadow_pass(RenderGraph& graph, const StyleContext& context, int size) {
+  SYLVA_CHECK(context.rasterizer != nullptr && !context.scene_sphere.empty(),
+              "toon.cast_shadows: the style context has no scene to render the shadow map from");
+  GraphScope scope(graph, "key-shadow");
+  const int out = graph.resource("shadow-map");
+  const int key = toon_key_light(context.lighting);
+  if (key < 0) {
+    graph.add_pass("shadow-map", {}, {out},
+                   [out](PassContext& ctx) { ctx.write(out, ToonShadowMap{}); });
+    return out;
+  }
+  const Light& light = context.lighting.lights[static_cast<size_t>(key)];
+  const bool point = light.type == Light::Type::Point;
+  glm::vec3 v = light.vector;
+  if (light.camera_fixed) {  // view space -> world space
+    const glm::mat4 to_world = glm::inverse(context.view);
+    v = point ? glm::vec3(to_world * glm::vec4(v, 1.0f)) : glm::mat3(to_world) * v;
+  }
+  RasterSetup rs;
+  rs.rasterizer = context.rasterizer;
+  rs.camera = make_light_camera(context.scene_sphere, v, point, size);
+  rs.lighting = context.lighting;
+  const GBufferHandles g = add_raster_pass(graph, rs);
+  const glm::mat4 view = rs.camera.view, proj = rs.camera.proj;
+  graph.add_pass("shadow-map", {g.depth}, {out}, [=](PassContext& ctx) {
+    ToonShadowMap m;
+    m.depth = ctx.read<cv::Mat>(g.depth);
+    m.light_view = view;
+    m.light_proj = proj;
+    ctx.write(out, m);
+  });
+  return out;
+}
+
+}  // namespace
+
 int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                const StyleContext& context) {
-  if (params.toon.cast_shadows)
-    throw InputError("toon.cast_shadows",
-                     "shadow-map shadows are not available in the toon style yet; set it to false");
   validate_toon_params(params.toon);
   ToonResources r;
   r.normal = gbuffer.normal;
   r.albedo = gbuffer.albedo;
   r.ka = gbuffer.ka;
   r.position = gbuffer.position;
+  if (params.toon.cast_shadows)
+    r.shadow = add_key_shadow_pass(graph, context, params.toon.shadow_map_size);
   return add_background_pass(graph,
                              add_toon_pass(graph, r, context.lighting, context.view, params.toon),
                              context.background);

@@ -25,6 +25,10 @@ struct StyleContext {
   glm::mat4 view{1.0f};              // world -> view
   glm::vec4 background{1, 1, 1, 0};  // linear RGBA (RasterRequest::background)
   float foliage_diagonal = 0;        // scene units; 0 = unknown (scale of object-space noise)
+  // For styles that render extra views (toon's shadow map from the key light): the uploaded
+  // scene and a sphere around it. May be null/empty when no such style is built.
+  Rasterizer* rasterizer = nullptr;
+  Sphere scene_sphere;
 };
 
 struct StyleBuilder {
@@ -44,7 +48,9 @@ const StyleBuilder& find_builder(const std::string& name, const std::string& whe
 int build_shaded(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                  const StyleContext& context);
 
-// toon: Decaudin's cartoon shading of the albedo in k bands of N.L (passes/toon.h).
+// toon: Decaudin's cartoon shading of the albedo in k bands of N.L (passes/toon.h); with
+// toon.cast_shadows, a depth-only raster pass from the key light (graph scope "key-shadow")
+// makes the shadow map.
 int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                const StyleContext& context);
 

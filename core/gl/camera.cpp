@@ -79,4 +79,40 @@ Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int wi
   return cam;
 }
 
+Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point,
+                         int size) {
+  SYLVA_CHECK(size >= 1 && size <= kMaxImageSide, "make_light_camera: bad size");
+  SYLVA_CHECK(!sphere.empty() && std::isfinite(sphere.radius), "make_light_camera: no sphere");
+  const glm::vec3 centre = sphere.centre;
+  const float radius = std::max(sphere.radius, 1e-6f * (1.0f + glm::length(centre))) * kMargin;
+  Camera cam;
+  cam.width = cam.height = size;
+  glm::vec3 dir;  // from the centre toward the eye
+  float distance;
+  if (point) {
+    dir = toward_light - centre;
+    distance = glm::length(dir);
+    dir = distance > 1e-6f * radius ? dir / distance : glm::vec3(0, 1, 0);
+  } else {
+    const float len = glm::length(toward_light);
+    SYLVA_CHECK(len > 0.0f && std::isfinite(len), "make_light_camera: no light direction");
+    dir = toward_light / len;
+    distance = 2.0f * radius;
+  }
+  const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+  cam.eye = centre + distance * dir;
+  cam.view = glm::lookAt(cam.eye, centre, up);
+  cam.far_plane = distance + radius;
+  cam.near_plane = std::max(distance - radius, cam.far_plane * 1e-3f);
+  if (point) {
+    cam.ortho = false;
+    const float half = distance > radius ? std::asin(radius / distance) : glm::radians(75.0f);
+    cam.proj = glm::perspective(2.0f * half, 1.0f, cam.near_plane, cam.far_plane);
+  } else {
+    cam.ortho = true;
+    cam.proj = glm::ortho(-radius, radius, -radius, radius, cam.near_plane, cam.far_plane);
+  }
+  return cam;
+}
+
 }  // namespace sylva

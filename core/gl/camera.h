@@ -35,4 +35,11 @@ struct Camera {
 Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int width, int height);
 Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
+// A square camera seeing the whole sphere from a light, for shadow maps: orthographic along
+// `toward_light` (world direction from the scene toward a directional light, any length
+// > 0), or, when `point` is set, perspective from the world position `toward_light` aimed at
+// the centre (a light inside the sphere gets a 150 degree field of view). Depth hugs the
+// sphere. size in [1, 16384] pixels.
+Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size);
+
 }  // namespace sylva

@@ -163,7 +163,7 @@ TEST(Cli, StylesPresetsAndSet) {
   expect_input_error(base + "--style " + dir + "/syntax.toml", "line 1");
   expect_input_error(base + "--style ink --set edges.width=0", "edges.width");
   expect_input_error(base + "--style ink --set edges.widht=2", "unknown key");
-  expect_input_error(base + "--style toon --set toon.cast_shadows=true", "toon.cast_shadows");
+  expect_input_error(base + "--style toon --set toon.shadow_map_size=63", "toon.shadow_map_size");
   expect_input_error(base + "--style sketch", "sketch");
   EXPECT_FALSE(file_exists(out));
   write_file(dir + "/mine.toml", "inherits = [\"ink\"]\n[edges]\nwidth = 3\n");

@@ -89,6 +89,7 @@ struct SheetRig {
     sheet.raster.camera = make_orbit_camera(scene.bounds(), OrbitParams{}, 64, 64);
     sheet.raster.lighting = Lighting::three_point();
     sheet.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
+    sheet.scene_sphere = scene.framing_sphere();
     sheet.foliage = [this](const FoliageSettings& f) {
       ++foliage_calls;
       IlluminationSetup is;

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "npr/leaf_clusters.h"
 #include "samples/plants.h"
+#include "styles/sheet.h"
 #include "styles/style.h"
 
 namespace sylva {
@@ -119,6 +120,57 @@ TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
   EXPECT_NEAR(mean_ka[0], 1.0, 1e-6);
   EXPECT_LT(mean_ka[1], 0.9);
   EXPECT_GT(mean_ka[1], 0.2 - 1e-6);  // ka_min
+}
+
+// toon.cast_shadows renders a depth map from the key light and darkens what it cannot see:
+// with the sun straight above, the trunk under the crown and the lower leaves go dark.
+// Without lights (a headlight along the view) nothing is blocked, so nothing changes.
+TEST(Styles, ToonCastShadowsDarkenWhatTheKeyLightCannotSee) {
+  PlantOptions po;
+  po.kind = PlantKind::Tree;
+  po.leaves = 800;
+  Scene scene = make_plant(po);
+  auto ctx = create_gl_context();
+  Rasterizer raster(*ctx);
+  raster.upload(scene);
+  SheetScene sheet;
+  sheet.raster.rasterizer = &raster;
+  sheet.raster.camera = make_orbit_camera(scene.framing_sphere(), OrbitParams{}, 96, 96);
+  sheet.scene_sphere = scene.framing_sphere();
+  sheet.foliage = [&](const FoliageSettings&) {
+    IlluminationSetup is;
+    is.scene = &scene;
+    return is;
+  };
+  Light sun;
+  sun.vector = {0.0f, 1.0f, 0.0f};
+  sun.camera_fixed = false;
+  auto render = [&](bool shadows, const Lighting& lighting) {
+    sheet.raster.lighting = lighting;
+    const Style style("toon", {"toon.cast_shadows=" + std::string(shadows ? "true" : "false"),
+                               "toon.shadow_map_size=256"});
+    RenderGraph graph;
+    const SheetPlan plan = add_sheet_passes(graph, {&style}, sheet);
+    EXPECT_EQ(graph.has_pass("key-shadow/shadow-map"), shadows);
+    EXPECT_EQ(graph.has_pass("key-shadow/raster"), shadows && !lighting.lights.empty());
+    graph.execute();
+    return graph.get<cv::Mat>(plan.outputs[0]).clone();
+  };
+  Lighting lit;
+  lit.lights = {sun};
+  const cv::Mat plain = render(false, lit), shadowed = render(true, lit);
+  cv::Mat alpha;
+  cv::extractChannel(plain, alpha, 3);
+  const double before = cv::mean(plain, alpha > 0)[1], after = cv::mean(shadowed, alpha > 0)[1];
+  EXPECT_LT(after, before * 0.95) << before << " -> " << after;
+  cv::Mat diff;
+  cv::absdiff(plain, shadowed, diff);
+  cv::Mat changed;
+  cv::extractChannel(diff, changed, 1);
+  EXPECT_GT(cv::countNonZero(changed > 0), cv::countNonZero(alpha > 0) / 5);
+  const cv::Mat head_plain = render(false, Lighting{}), head_shadowed = render(true, Lighting{});
+  cv::absdiff(head_plain, head_shadowed, diff);
+  EXPECT_EQ(cv::countNonZero(diff.reshape(1) > 0), 0);
 }
 
 TEST(Styles, UnknownStyleIsAnInputError) {

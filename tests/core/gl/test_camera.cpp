@@ -136,6 +136,48 @@ TEST(Camera, AutoFramingKeepsCornersInside) {
   }
 }
 
+// The shadow-map camera sees the whole sphere, depth included, from any light direction
+// (straight up and down too) and from point lights outside and inside the sphere.
+TEST(Camera, LightCameraHoldsTheSphere) {
+  const Sphere sphere{{1.0f, 4.0f, -2.0f}, 3.0f};
+  struct Case {
+    glm::vec3 v;
+    bool point;
+  } cases[] = {{{0, 1, 0}, false},        {{0, -5, 0}, false}, {{1, 1, 1}, false},
+               {{0.3f, 0.2f, -1}, false}, {{1, 30, -2}, true}, {{20, 4, -2}, true}};
+  for (const Case& c : cases) {
+    const Camera cam = make_light_camera(sphere, c.v, c.point, 256);
+    EXPECT_EQ(cam.width, 256);
+    EXPECT_EQ(cam.ortho, !c.point);
+    float extent = 0.0f;
+    for (int i = 0; i < 2000; ++i) {
+      const float z = 1.0f - 2.0f * (i + 0.5f) / 2000;
+      const float phi = 2.39996323f * i;
+      const float s = std::sqrt(1.0f - z * z);
+      const glm::vec3 p =
+          sphere.centre + sphere.radius * glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+      const glm::vec4 clip = cam.proj * cam.view * glm::vec4(p, 1.0f);
+      ASSERT_GT(clip.w, 0.0f);
+      const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+      for (int k = 0; k < 3; ++k)
+        ASSERT_LE(std::abs(ndc[k]), 1.0f) << "axis " << k << " point " << c.point;
+      extent = std::max({extent, std::abs(ndc.x), std::abs(ndc.y)});
+    }
+    EXPECT_GT(extent, 0.85f);  // tight: a texel is not wasted on empty space
+  }
+  // A directional light looks along -v: the centre lies straight ahead.
+  const Camera down = make_light_camera(sphere, {0, 1, 0}, false, 64);
+  const glm::vec4 centre = down.view * glm::vec4(sphere.centre, 1.0f);
+  EXPECT_NEAR(centre.x, 0.0f, 1e-4f);
+  EXPECT_NEAR(centre.y, 0.0f, 1e-4f);
+  EXPECT_LT(centre.z, 0.0f);
+  EXPECT_GT(down.eye.y, sphere.centre.y);
+  // A point light inside the sphere still gets a finite, wide camera.
+  const Camera inside = make_light_camera(sphere, sphere.centre + glm::vec3(0.5f, 0, 0), true, 64);
+  EXPECT_FALSE(inside.ortho);
+  EXPECT_TRUE(std::isfinite(inside.proj[0][0]));
+}
+
 TEST(Camera, InvalidValuesThrow) {
   const Bounds b = box({-1, -1, -1}, {1, 1, 1});
   EXPECT_EQ(where_of(b, orbit(0, 89.5f), 64, 64), "--elevation");
