@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "cli/frame.h"
 #include "cli/illumination_options.h"
 #include "core/error.h"
 #include "core/io/atomic_file.h"
@@ -127,6 +128,8 @@ Action add_tradeoff_command(CLI::App& app) {
     std::string encodings = "length,attribute";
     int reference_grid = 256;
     std::string thresholds = "scaled";
+    std::string style = "standard";
+    std::vector<std::string> sets;
     bool quiet = false;
   };
   auto o = std::make_shared<Opts>();
@@ -163,8 +166,11 @@ Action add_tradeoff_command(CLI::App& app) {
                   "the share of generators, matching the expected density) or fixed (the "
                   "reference's)")
       ->capture_default_str();
+  // The settings the sweep starts from: a style's foliage.* keys (after --set), then the
+  // explicit options above.
+  add_style_options(*cmd, o->style, o->sets);
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
-  return [o] {
+  return [o, cmd] {
     if (o->study != "foliage")
       throw InputError("--study", "unknown study '" + o->study + "' (allowed: " + kStudies + ")");
     check_output_path("--output", o->out, {".csv"});
@@ -173,6 +179,7 @@ Action add_tradeoff_command(CLI::App& app) {
     // Every option is checked before the scene is loaded. illumination_setup only keeps a
     // pointer to the scene, so an empty one serves for parsing.
     const Scene no_scene;
+    resolve_style(*cmd, o->style, o->sets, o->illumination);
     FoliageStudyOptions so;
     so.base = illumination_setup(o->illumination, o->scene.seed, no_scene).params;
     so.fractions = parse_numbers<double>(o->fractions, "--fractions");

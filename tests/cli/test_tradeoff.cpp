@@ -51,6 +51,21 @@ TEST(Tradeoff, QuickFoliageSweep) {
         << e.path();
 }
 
+// The sweep starts from a style's foliage settings: --set foliage.tau fixes the threshold of
+// the reference and of the full-generator run.
+TEST(Tradeoff, SetChoosesTheBaseSettings) {
+  const std::string dir = temp_dir("tradeoff-set");
+  const RunResult r = run_sylva("tradeoff " + tradeoff_tree() +
+                                " --study foliage --fractions 1 --grids 16 --normal-sources "
+                                "surface --encodings attribute --set foliage.tau=3 -q -o " +
+                                dir + "/s.csv");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string csv = read_file(dir + "/s.csv");
+  const std::string row = csv.substr(csv.find('\n') + 1);
+  EXPECT_EQ(row.rfind("1,16,surface,attribute,", 0), 0u) << csv;
+  EXPECT_NE(row.find(",3,"), std::string::npos) << csv;  // the tau column
+}
+
 TEST(Tradeoff, BadInputWritesNothing) {
   const std::string dir = temp_dir("tradeoff-bad");
   const std::string out = " -o " + dir + "/s.csv --plot " + dir + "/s.png";
@@ -60,6 +75,9 @@ TEST(Tradeoff, BadInputWritesNothing) {
   };
   for (const Case& c : std::vector<Case>{
            {base + " --study ao", "allowed: foliage"},
+           {base + " --study foliage --set foliage.tau=-1", "foliage.tau"},
+           {base + " --study foliage --set foliage.rhoo=1", "unknown key"},
+           {base + " --study foliage --style nope", "nope"},
            {base + " --study foliage --fractions 0", "--fractions"},
            {base + " --study foliage --fractions 1.5", "(0, 1]"},
            {base + " --study foliage --fractions 1,,0.5", "--fractions"},
