@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   reg(&sylva::cli::add_buffers_command);
   reg(&sylva::cli::add_styles_command);
   reg(&sylva::cli::add_compare_command);
+  reg(&sylva::cli::add_turntable_command);
   reg(&sylva::cli::add_bake_command);
   reg(&sylva::cli::add_tradeoff_command);
   if (argc > 1 && argv[1][0] != '-') {

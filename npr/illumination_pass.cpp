@@ -99,6 +99,10 @@ int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup) {
   SYLVA_CHECK(setup.scene != nullptr, "foliage illumination needs a scene");
   const int out = graph.resource("vertex-shading");
   graph.add_pass("foliage-illumination", {}, {out}, [out, setup](PassContext& ctx) {
+    if (setup.memo && *setup.memo) {
+      ctx.write(out, *setup.memo);
+      return;
+    }
     FoliageIllumination r;
     try {
       const ResultCache cache(setup.cache_dir);
@@ -114,7 +118,9 @@ int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup) {
     }
     if (!setup.surface_out.empty()) write_surface(r.surface, setup.surface_out);
     if (setup.on_done) setup.on_done(r.stats);
-    ctx.write(out, std::make_shared<const VertexShading>(vertex_shading(r, setup.encoding)));
+    auto shading = std::make_shared<const VertexShading>(vertex_shading(r, setup.encoding));
+    if (setup.memo) *setup.memo = shading;
+    ctx.write(out, shading);
   });
   return out;
 }

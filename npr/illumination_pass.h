@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "core/graph/render_graph.h"
@@ -55,6 +56,10 @@ struct IlluminationSetup {
   std::string cache_dir;    // result cache folder (npr/foliage_cache.h); empty = no cache
   std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty
   std::string option_prefix;  // "--": parameter errors name the CLI option ("--tau")
+  // When set, the first run stores its result here and every later run (other graphs over
+  // the same scene and settings, e.g. the frames of a turntable) reuses it: the
+  // preprocessing is view-independent, so it is computed once per animation.
+  std::shared_ptr<std::shared_ptr<const VertexShading>> memo;
 };
 
 // Returns the "vertex-shading" resource.

@@ -168,6 +168,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     const int out = style.build(graph, rasters[rkey], context);
     graph.present(out);
     plan.outputs.push_back(out);
+    plan.gbuffers.push_back(rasters[rkey]);
   }
   plan.raster_passes = static_cast<int>(rasters.size());
   graph.compile();

@@ -54,8 +54,9 @@ struct SheetScene {
 
 struct SheetPlan {
   std::vector<int> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented
-  int raster_passes = 0;     // distinct raster configurations
-  int foliage_passes = 0;    // Luft preprocessings that run (distinct settings read)
+  std::vector<GBufferHandles> gbuffers;  // per style: the raster pass it reads
+  int raster_passes = 0;                 // distinct raster configurations
+  int foliage_passes = 0;                // Luft preprocessings that run (distinct settings read)
 };
 
 // Adds the passes of every style to `graph`, presents their images and compiles. With one style

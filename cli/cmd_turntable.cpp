@@ -1,0 +1,215 @@
+// sylva turntable SCENE --style S --frames N [--degrees 360] [--axis y] [--zoom Z] [--fps F]
+//   [--frame-range A:B] [--resume] [--report coherence.csv] -o OUT.mp4|DIR/
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/frame.h"
+#include "core/error.h"
+#include "core/io/atomic_file.h"
+#include "core/io/image_io.h"
+#include "core/progress.h"
+#include "styles/turntable.h"
+
+namespace fs = std::filesystem;
+
+namespace sylva::cli {
+
+namespace {
+
+std::string frame_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%05d.png", frame);
+  return name;
+}
+
+// An MP4 written under a temporary name beside the target and renamed when complete.
+class VideoOut {
+ public:
+  VideoOut(const std::string& path, double fps, cv::Size size) : m_path(path) {
+    const fs::path p(path);
+    m_temp = (p.parent_path() /
+              ("." + p.stem().string() + ".partial-" + std::to_string(getpid()) + ".mp4"))
+                 .string();
+    for (const char* codec : {"avc1", "mp4v"}) {
+      const int fourcc = cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]);
+      if (m_writer.open(m_temp, cv::CAP_FFMPEG, fourcc, fps, size)) return;
+    }
+    throw InputError("--output", "cannot open an MP4 writer for '" + path + "' (FFmpeg)");
+  }
+  ~VideoOut() {
+    if (!m_done) {
+      m_writer.release();
+      std::error_code ec;
+      fs::remove(m_temp, ec);
+    }
+  }
+  void write(const cv::Mat& bgr) { m_writer.write(bgr); }
+  void finish() {
+    m_writer.release();
+    std::error_code ec;
+    fs::rename(m_temp, m_path, ec);
+    if (ec) throw InputError("--output", "cannot write '" + m_path + "': " + ec.message());
+    m_done = true;
+  }
+
+ private:
+  std::string m_path, m_temp;
+  cv::VideoWriter m_writer;
+  bool m_done = false;
+};
+
+}  // namespace
+
+Action add_turntable_command(CLI::App& app) {
+  struct Opts {
+    SceneOptions scene;
+    ViewOptions view;
+    IlluminationOptions illumination;
+    std::string style = "standard";
+    std::vector<std::string> sets;
+    TurntablePath path;
+    std::string axis = "y";
+    double fps = 30;
+    std::string range, report, out;
+    bool resume = false, quiet = false;
+  };
+  auto o = std::make_shared<Opts>();
+  o->view.size = "512x512";
+  CLI::App* cmd = app.add_subcommand(
+      "turntable", "Render a turntable animation in a style: an MP4 or a folder of PNG frames");
+  add_scene_options(*cmd, o->scene);
+  add_view_options(*cmd, o->view);
+  add_illumination_options(*cmd, o->illumination);
+  add_style_options(*cmd, o->style, o->sets);
+  cmd->add_option("--frames", o->path.frames, "Number of frames, [1, 100000]")
+      ->capture_default_str();
+  cmd->add_option("--degrees", o->path.degrees,
+                  "Rotation over all frames in degrees, [-36000, 36000]; 360 loops seamlessly")
+      ->capture_default_str();
+  cmd->add_option("--axis", o->axis, "World axis to turn about: x, y (up) or z")
+      ->capture_default_str();
+  cmd->add_option("--zoom", o->path.zoom, "Image magnification, (0, 100]; 1 = framed")
+      ->capture_default_str();
+  cmd->add_option("--fps", o->fps, "Frames per second of the MP4, [1, 240]")->capture_default_str();
+  cmd->add_option("--frame-range", o->range,
+                  "Render frames A to B-1 only (A:B, 0-based; folder output), e.g. for a "
+                  "render farm; the frames equal those of a full run");
+  cmd->add_flag("--resume", o->resume, "Skip frames already in the output folder");
+  cmd->add_option("--report", o->report,
+                  "Write per-frame time and flicker (mean |change| inside the plant, 8-bit "
+                  "levels) to a .csv");
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress output");
+  cmd->add_option(
+         "-o,--output", o->out,
+         "Output .mp4, or a folder for PNG frames frame-00000.png, ... (a name without extension)")
+      ->required();
+  return [o, cmd] {
+    o->path.axis = o->axis.size() == 1 ? o->axis[0] : '?';
+    validate_turntable(o->path);
+    if (!(o->fps >= 1 && o->fps <= 240)) throw InputError("--fps", "must be in [1, 240]");
+    // A folder: "out/", an existing folder, or a name without an extension.
+    const bool to_dir =
+        o->out.ends_with("/") || fs::is_directory(o->out) || fs::path(o->out).extension().empty();
+    if (!to_dir) {
+      check_output_path("--output", o->out, {".mp4"});
+      if (!o->range.empty())
+        throw InputError("--frame-range", "needs a folder output (an MP4 is written whole)");
+      if (o->resume) throw InputError("--resume", "needs a folder output");
+    } else {
+      fs::path dir = fs::path(o->out).lexically_normal();
+      if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
+      const fs::path parent = dir.parent_path();
+      std::error_code ec;
+      if (!fs::is_directory(dir, ec) && !parent.empty() && !fs::is_directory(parent, ec))
+        throw InputError("--output", "parent folder of '" + o->out + "' does not exist");
+    }
+    if (!o->report.empty()) {
+      check_output_path("--report", o->report, {".csv"});
+      if (o->resume) throw InputError("--report", "needs every frame rendered; drop --resume");
+    }
+    const FrameRange range = parse_frame_range(o->range, o->path.frames);
+    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+
+    auto frame = prepare_frame(o->scene, o->view);
+    SheetScene scene = sheet_scene(*frame, o->illumination, o->scene.seed);
+    // The Luft preprocessing does not depend on the view: once per turntable.
+    auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
+    scene.foliage = [f = scene.foliage, memo, quiet = o->quiet](const FoliageSettings& s) {
+      IlluminationSetup setup = f(s);
+      setup.memo = memo;
+      if (quiet) setup.on_done = nullptr;
+      return setup;
+    };
+    const Camera base = frame->setup.camera;
+    const glm::vec3 centre = frame->scene.framing_sphere().centre;
+    if (to_dir) {
+      std::error_code ec;
+      fs::create_directories(o->out, ec);
+      if (ec) throw InputError("--output", "cannot create '" + o->out + "': " + ec.message());
+    }
+    std::unique_ptr<VideoOut> video;
+    if (!to_dir)
+      video = std::make_unique<VideoOut>(o->out, o->fps, cv::Size(base.width, base.height));
+
+    std::ostringstream csv;
+    csv << "frame,seconds,flicker\n";
+    cv::Mat previous, previous_mask;
+    int written = 0, skipped = 0;
+    ProgressOptions po;
+    po.quiet = o->quiet;
+    Progress progress("turntable", static_cast<size_t>(range.end - range.begin), po);
+    for (int i = range.begin; i < range.end; ++i) {
+      const std::string file = (fs::path(o->out) / frame_name(i)).string();
+      if (o->resume && fs::exists(file)) {
+        ++skipped;
+        progress.step("frame " + std::to_string(i) + " kept");
+        continue;
+      }
+      const auto t0 = std::chrono::steady_clock::now();
+      scene.raster.camera = turntable_camera(base, centre, o->path, i);
+      RenderGraph graph;
+      const SheetPlan plan = add_sheet_passes(graph, {style.get()}, scene);
+      if (!o->report.empty()) graph.present(plan.gbuffers[0].depth);  // the plant's mask
+      graph.compile();
+      graph.execute();
+      const cv::Mat& image = graph.get<cv::Mat>(plan.outputs[0]);
+      if (to_dir) {
+        write_image(file, image);
+      } else {
+        cv::Mat bgr;
+        cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+        video->write(bgr);
+      }
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!o->report.empty()) {
+        const cv::Mat mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
+        csv << i << ',' << seconds << ',';
+        if (!previous.empty()) csv << frame_flicker(previous, image, previous_mask, mask);
+        csv << '\n';
+        previous = image.clone();
+        previous_mask = mask;
+      }
+      ++written;
+      progress.step("frame " + std::to_string(i));
+    }
+    progress.finish();
+    release_frame(frame);
+    if (video) video->finish();
+    if (!o->report.empty()) write_file_atomic(o->report, csv.str());
+    std::printf("wrote %s (%d frame(s)%s, %dx%d, style %s)\n", o->out.c_str(), written,
+                skipped > 0 ? (", " + std::to_string(skipped) + " kept").c_str() : "", base.width,
+                base.height, style->info().name.c_str());
+  };
+}
+
+}  // namespace sylva::cli
