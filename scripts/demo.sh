@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Renders the demo gallery: the sample tree, bush and conifer and the shared fern in the
-# standard, expressive (Luft et al.), ink, toon and watercolor styles, their G-buffer previews, the normal buffers of
-# Luft Fig. 7 (original, realigned, realigned-scaled), a baked tree and the foliage trade-off
-# plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
+# standard, expressive (Luft et al.), ink, toon and watercolor styles, a contact sheet of
+# every style per scene, their G-buffer previews, the normal buffers of Luft Fig. 7 (original,
+# realigned, realigned-scaled), a rho/tau sweep (Luft Fig. 3), toon with cast shadows, toon
+# turntables (MP4), a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
 set -euo pipefail
 sylva=$1
 out=$2
@@ -19,11 +20,23 @@ for scene in "${scenes[@]}"; do
     "$sylva" render "$scene" --style "$style" --size 1024 --ssaa 2 --cache-dir "$out/cache" \
       -o "$out/$name-$style.png"
   done
+  "$sylva" compare "$scene" --size 512 --ssaa 2 --cache-dir "$out/cache" -q \
+    -o "$out/$name-sheet.png"
   "$sylva" buffers "$scene" --size 512 --out-dir "$out/$name-buffers" --id cluster
   for normals in original realigned realigned-scaled; do
     "$sylva" buffers "$scene" --size 512 --buffers normal --normals "$normals" \
       --cache-dir "$out/cache" --out-dir "$out/$name-normals-$normals"
   done
+done
+"$sylva" compare "$out/tree.glb" --style expressive --sweep foliage.rho=3%,8%,20% \
+  --sweep foliage.tau=auto,4,16 --size 384 --ssaa 2 --cache-dir "$out/cache" -q \
+  -o "$out/tree-rho-tau-sheet.png"
+"$sylva" compare "$out/tree.glb" --style toon --sweep toon.cast_shadows=false,true --size 768 \
+  --ssaa 2 --cache-dir "$out/cache" -q -o "$out/tree-toon-shadows-sheet.png"
+for kind in tree conifer; do
+  "$sylva" turntable "$out/$kind.glb" --style toon --frames 72 --size 512 --ssaa 2 \
+    --cache-dir "$out/cache" -q --report "$out/$kind-turntable-coherence.csv" \
+    -o "$out/$kind-turntable-toon.mp4"
 done
 "$sylva" bake "$out/tree.glb" --cache-dir "$out/cache" -o "$out/tree-baked.glb"
 "$sylva" render "$out/tree-baked.glb" --size 1024 --ssaa 2 -o "$out/tree-baked-standard.png"
@@ -31,5 +44,5 @@ done
   --plot "$out/bush-tradeoff.png"
 echo
 echo "demo: the gallery is in $out/:"
-ls "$out"/*.png | sed 's/^/  /'
+ls "$out"/*.png "$out"/*.mp4 | sed 's/^/  /'
 echo "  and the buffer previews in $out/*-buffers/ and $out/*-normals-*/ (*.preview.png)"
