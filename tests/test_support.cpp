@@ -1,5 +1,7 @@
 #include "tests/test_support.h"
 
+#include "core/error.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -93,6 +95,15 @@ RunResult validate_gltf(const std::string& path) {
 
 bool gltf_validator_installed() {
   return fs::exists(source_dir() + "/tests/tools/node_modules/gltf-validator/package.json");
+}
+
+std::string where_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.where();
+  }
+  return "no error";
 }
 
 int count_lines(const std::string& s) {

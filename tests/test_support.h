@@ -2,6 +2,7 @@
 // temporary directories, running the CLI and capturing its output.
 #pragma once
 
+#include <functional>
 #include <string>
 
 namespace sylva::test {
@@ -26,6 +27,9 @@ RunResult run_sylva(const std::string& args);
 RunResult validate_gltf(const std::string& path);
 // Whether scripts/setup.sh installed the validator (npm, tests/tools/node_modules).
 bool gltf_validator_installed();
+
+// The `where` of the InputError that f throws, or "no error".
+std::string where_of(const std::function<void()>& f);
 
 // The number of newlines in s (one-line error messages are checked with it).
 int count_lines(const std::string& s);

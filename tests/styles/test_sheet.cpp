@@ -10,18 +10,12 @@
 #include "samples/plants.h"
 #include "styles/sheet.h"
 #include "styles/sheet_layout.h"
+#include "tests/test_support.h"
 
 namespace sylva {
 namespace {
 
-std::string where_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.where();
-  }
-  return "no error";
-}
+using test::where_of;
 
 TEST(Sheet, SweepsExpandToTheProductLastFastest) {
   const auto e = expand_sheet({"ink", "toon"}, {"edges.color=#000000"},

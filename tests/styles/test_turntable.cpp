@@ -5,18 +5,12 @@
 
 #include "core/error.h"
 #include "styles/turntable.h"
+#include "tests/test_support.h"
 
 namespace sylva {
 namespace {
 
-std::string where_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.where();
-  }
-  return "no error";
-}
+using test::where_of;
 
 Camera base_camera() {
   OrbitParams o;
