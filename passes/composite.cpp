@@ -42,9 +42,15 @@ const std::vector<uint8_t>& encode_lut() {
   return lut;
 }
 
-inline uint8_t encode(float linear) {
+// std::lround for a float x in [0, 2^31) without the library call: double(x) + 0.5 is exact
+// (or, for tiny x, still below 1), so truncating it rounds half away from zero as lround does.
+inline int round_non_negative(float x) {
+  return int(double(x) + 0.5);
+}
+
+inline uint8_t encode(const std::vector<uint8_t>& lut, float linear) {
   const float c = std::clamp(linear, 0.0f, 1.0f);
-  return encode_lut()[size_t(std::lround(c * kEncodeSteps))];
+  return lut[size_t(round_non_negative(c * kEncodeSteps))];
 }
 
 // One octave of value noise in [-1, 1] (bicubic, may overshoot a little): a seeded lattice
@@ -75,8 +81,16 @@ void check_paper(const PaperParams& p) {
 cv::Mat make_paper(const cv::Size& size, const PaperParams& p) {
   check_paper(p);
   const cv::Scalar bgr(p.color.b, p.color.g, p.color.r);
-  cv::Mat paper(size, CV_32FC3, bgr);
-  if (p.grain <= 0.0f || size.empty()) return paper;
+  cv::Mat paper(size, CV_32FC3);
+  if (p.grain <= 0.0f || size.empty()) {
+    // A flat sheet; filled by row bands, as this is a large image written once per frame.
+    const cv::Vec3f v{float(bgr[0]), float(bgr[1]), float(bgr[2])};
+    for_bands(size.height, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        std::fill_n(paper.ptr<cv::Vec3f>(y), size.width, v);
+    });
+    return paper;
+  }
 
   // Two octaves: fine tooth and broader cloudiness of the sheet.
   const double cell = p.grain_size * reference_scale(size);
@@ -128,35 +142,39 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
 
   const std::array<float, 256>& decode = decode_lut();
   const cv::Vec3f line(p.line_color.b, p.line_color.g, p.line_color.r);
+  const std::vector<uint8_t>& encode_table = encode_lut();
   cv::Mat out(size, CV_8UC4);
-  for (int y = 0; y < size.height; ++y) {
-    const float* l = lines.ptr<float>(y);
-    const cv::Vec3f* pp = paper.ptr<cv::Vec3f>(y);
-    const cv::Vec4b* c = has_color ? coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
-    const float* m = has_color ? nullptr : coverage_or_color.ptr<float>(y);
-    cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
-    for (int x = 0; x < size.width; ++x) {
-      const float a = has_color ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
-      const cv::Vec3f shaded =
-          has_color ? cv::Vec3f(decode[c[x][0]], decode[c[x][1]], decode[c[x][2]]) : line;
-      const float wash = p.fill * a;
-      cv::Vec3f ground;
-      for (int k = 0; k < 3; ++k)
-        ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
-      const float ink = std::clamp(l[x], 0.0f, 1.0f);
-      cv::Vec3f rgb;
-      float alpha = 1.0f;
-      if (!p.transparent) {
-        rgb = ground * (1.0f - ink) + line * ink;
-      } else {
-        // Straight alpha: lines over the ground, which covers only the drawing.
-        alpha = ink + a * (1.0f - ink);
-        rgb = alpha > 0.0f ? (line * ink + ground * (a * (1.0f - ink))) / alpha : ground;
+  // Rows in parallel: every pixel depends only on its inputs.
+  for_bands(size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const float* l = lines.ptr<float>(y);
+      const cv::Vec3f* pp = paper.ptr<cv::Vec3f>(y);
+      const cv::Vec4b* c = has_color ? coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
+      const float* m = has_color ? nullptr : coverage_or_color.ptr<float>(y);
+      cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
+      for (int x = 0; x < size.width; ++x) {
+        const float a = has_color ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
+        const cv::Vec3f shaded =
+            has_color ? cv::Vec3f(decode[c[x][0]], decode[c[x][1]], decode[c[x][2]]) : line;
+        const float wash = p.fill * a;
+        cv::Vec3f ground;
+        for (int k = 0; k < 3; ++k)
+          ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
+        const float ink = std::clamp(l[x], 0.0f, 1.0f);
+        cv::Vec3f rgb;
+        float alpha = 1.0f;
+        if (!p.transparent) {
+          rgb = ground * (1.0f - ink) + line * ink;
+        } else {
+          // Straight alpha: lines over the ground, which covers only the drawing.
+          alpha = ink + a * (1.0f - ink);
+          rgb = alpha > 0.0f ? (line * ink + ground * (a * (1.0f - ink))) / alpha : ground;
+        }
+        o[x] = cv::Vec4b(encode(encode_table, rgb[0]), encode(encode_table, rgb[1]),
+                         encode(encode_table, rgb[2]), uint8_t(round_non_negative(alpha * 255.0f)));
       }
-      o[x] = cv::Vec4b(encode(rgb[0]), encode(rgb[1]), encode(rgb[2]),
-                       uint8_t(std::lround(alpha * 255.0f)));
     }
-  }
+  });
   return out;
 }
 

@@ -24,6 +24,11 @@
 // within 1.5 px (a crease: 2.5 px) of the silhouette is dropped (a surface seen edge-on turns
 // its normal and depth fastest right at its outline, which would draw a second, ragged line
 // beside it), and so are groups of fewer than three marks (specks, not lines).
+//
+// Parts: marking in passes/edge_marks.h (creases in passes/edge_creases.h), widening into
+// lines in passes/edge_lines.h, both on the lattice of passes/edge_lattice.h. They run row
+// bands in parallel, and every output pixel depends only on the inputs, so the bytes do not
+// depend on the number of threads.
 #pragma once
 
 #include <glm/glm.hpp>

@@ -4,6 +4,7 @@
 // as the raster pass's colour target (core/gl/gbuffer.h).
 #pragma once
 
+#include <algorithm>
 #include <opencv2/core.hpp>
 
 namespace sylva {
@@ -16,5 +17,16 @@ double reference_scale(const cv::Size& size);
 // A programming error (SYLVA_CHECK) unless m has the given type and size (size empty = any):
 // passes check the images the graph hands them once, at the top.
 void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* what);
+
+// Calls f(begin, end) for bands of [0, count) (image rows, or columns) in parallel through
+// cv::parallel_for_, a few bands per thread (a band per row would cost each row the
+// per-band set-up). Callers write only what their band owns and reduce nothing across bands,
+// so the result does not depend on the number of threads or how the bands fall.
+template <class F>
+void for_bands(int count, F f) {
+  const double bands = std::max(1, cv::getNumThreads()) * 4.0;
+  cv::parallel_for_(
+      cv::Range(0, count), [&](const cv::Range& r) { f(r.start, r.end); }, bands);
+}
 
 }  // namespace sylva

@@ -30,6 +30,10 @@
 // Pigment colour: the cluster's mean *shaded* colour by default, because the Luft foliage
 // illumination (ka, inner clusters darker) is what gives the painted tree its volume; the
 // albedo gives flat local colour with all the shading left to glazing and detail.
+//
+// Parts: the washes in passes/watercolor_layers.h, the paper and turbulence textures in
+// passes/watercolor_textures.h, the colour curves they share in passes/watercolor_common.h;
+// watercolor.cpp sorts the clusters, glazes the washes and puts them on paper.
 #pragma once
 
 #include <glm/glm.hpp>

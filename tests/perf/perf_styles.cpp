@@ -4,12 +4,25 @@
 // scene. The Luft preprocessing is scene-level and cached (npr/foliage_cache.h), so it is
 // computed once outside the timed loop. Reports medians (run with --benchmark_repetitions);
 // the cost ratios to the bare raster pass are worked out from them.
+//
+// The same for the ink style on a small alpha-card tree (`sylva sample tree --leaves 4200`,
+// 25,013 triangles, loaded back from a .glb as the command does): one frame (BM_CardTree), and
+// everything `sylva render cards.glb --style ink --size 1024x1024` does in-process with a
+// warm result cache (BM_CardTreeCommand: load, clusters, GL context, upload, cached
+// preprocessing, raster, ink, PNG written), which leaves out only the process start.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <memory>
+#include <string>
 
 #include "core/gl/raster_pass.h"
+#include "core/io/image_io.h"
+#include "core/scene/gltf_write.h"
+#include "core/scene/load.h"
 #include "npr/foliage_illumination.h"
+#include "npr/illumination_pass.h"
 #include "npr/leaf_clusters.h"
 #include "styles/style.h"
 #include "tests/perf/perf_trees.h"
@@ -18,7 +31,10 @@ namespace sylva {
 namespace {
 
 constexpr int kLeaves = 100'000;
+constexpr int kCardLeaves = 4'200;  // 25,013 triangles with the default seed
 constexpr int kSize = 1024;
+
+namespace fs = std::filesystem;
 
 struct Rig {
   Scene scene;
@@ -26,8 +42,7 @@ struct Rig {
   std::unique_ptr<Rasterizer> raster;
   std::shared_ptr<const VertexShading> shading;
   Camera camera;
-  Rig() {
-    scene = perf::sample_tree(kLeaves);
+  explicit Rig(Scene s) : scene(std::move(s)) {
     assign_clusters(scene, ClusterOptions{});
     raster = std::make_unique<Rasterizer>(*context);
     raster->upload(scene);
@@ -38,8 +53,62 @@ struct Rig {
 };
 
 Rig& rig() {
-  static Rig r;
+  static Rig r(perf::sample_tree(kLeaves));
   return r;
+}
+
+// A scratch folder for the card tree's .glb, the result cache and the output image, removed
+// at exit.
+struct CardFiles {
+  fs::path dir = fs::temp_directory_path() / ("sylva-perf-styles-" + std::to_string(getpid()));
+  fs::path glb = dir / "cards.glb";
+  fs::path cache = dir / "cache";
+  fs::path png = dir / "cards-ink.png";
+  CardFiles() {
+    fs::create_directories(dir);
+    write_glb(perf::sample_tree(kCardLeaves), glb.string());
+  }
+  ~CardFiles() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+CardFiles& card_files() {
+  static CardFiles f;
+  return f;
+}
+
+Rig& card_rig() {
+  static Rig r(load_scene(card_files().glb.string()));
+  return r;
+}
+
+// One frame of `style` ("raster": the bare raster pass) through the render graph.
+void render_frame(Rig& r, const std::string& name, const Style& style) {
+  RenderGraph graph;
+  RasterSetup setup;
+  setup.rasterizer = r.raster.get();
+  setup.camera = r.camera;
+  setup.lighting = Lighting::three_point();
+  style.configure(setup.request);
+  if (style.normals() != NormalMode::Original) {
+    const int shading = graph.resource("vertex-shading");
+    graph.add_pass("cached-shading", {}, {shading},
+                   [&r, shading](PassContext& ctx) { ctx.write(shading, r.shading); });
+    setup.shading = shading;
+    setup.request.scaled_normals = style.normals() == NormalMode::RealignedScaled;
+  }
+  const GBufferHandles gb = add_raster_pass(graph, setup);
+  StyleContext context;
+  context.lighting = setup.lighting;
+  context.view = setup.camera.view;
+  context.background = setup.request.background;
+  context.foliage_diagonal = r.scene.bounds(Role::Foliage).diagonal();
+  const int out = name == "raster" ? gb.color : style.build(graph, gb, context);
+  graph.present(out);
+  graph.execute();
+  benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
 }
 
 const char* const kStyles[] = {"raster", "standard", "expressive", "ink", "toon", "watercolor"};
@@ -48,39 +117,72 @@ void BM_Style(benchmark::State& state) {
   Rig& r = rig();
   const std::string name = kStyles[state.range(0)];
   state.SetLabel(name);
-  const std::unique_ptr<Style> style =
-      std::make_unique<Style>(name == "raster" ? "standard" : name);
-  for (auto _ : state) {
-    RenderGraph graph;
-    RasterSetup setup;
-    setup.rasterizer = r.raster.get();
-    setup.camera = r.camera;
-    setup.lighting = Lighting::three_point();
-    style->configure(setup.request);
-    if (style->normals() != NormalMode::Original) {
-      const int shading = graph.resource("vertex-shading");
-      graph.add_pass("cached-shading", {}, {shading},
-                     [&r, shading](PassContext& ctx) { ctx.write(shading, r.shading); });
-      setup.shading = shading;
-      setup.request.scaled_normals = style->normals() == NormalMode::RealignedScaled;
-    }
-    const GBufferHandles gb = add_raster_pass(graph, setup);
-    StyleContext context;
-    context.lighting = setup.lighting;
-    context.view = setup.camera.view;
-    context.background = setup.request.background;
-    context.foliage_diagonal = r.scene.bounds(Role::Foliage).diagonal();
-    const int out = name == "raster" ? gb.color : style->build(graph, gb, context);
-    graph.present(out);
-    graph.execute();
-    benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
-  }
+  const Style style(name == "raster" ? "standard" : name);
+  for (auto _ : state)
+    render_frame(r, name, style);
 }
 BENCHMARK(BM_Style)
     ->DenseRange(0, 5)
     ->ArgName("style")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+const char* const kCardStyles[] = {"raster", "ink"};
+
+void BM_CardTree(benchmark::State& state) {
+  Rig& r = card_rig();
+  const std::string name = kCardStyles[state.range(0)];
+  state.SetLabel(name);
+  const Style style(name == "raster" ? "standard" : name);
+  for (auto _ : state)
+    render_frame(r, name, style);
+}
+BENCHMARK(BM_CardTree)
+    ->DenseRange(0, 1)
+    ->ArgName("style")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// As cli/cmd_render.cpp: the scene loaded and clustered, a new GL context, the preprocessing
+// through the result cache (filled before the timed loop), the frame, the PNG.
+void render_card_command(const CardFiles& files, const Style& style) {
+  Scene scene = load_scene(files.glb.string());
+  assign_clusters(scene, ClusterOptions{});
+  const std::unique_ptr<GlContext> context = create_gl_context();
+  Rasterizer raster(*context);
+  raster.upload(scene);
+  RenderGraph graph;
+  IlluminationSetup illumination;
+  illumination.scene = &scene;
+  illumination.cache_dir = files.cache.string();
+  RasterSetup setup;
+  setup.rasterizer = &raster;
+  setup.camera = make_orbit_camera(scene.framing_sphere(), OrbitParams{}, kSize, kSize);
+  setup.lighting = Lighting::three_point();
+  style.configure(setup.request);
+  setup.shading = add_foliage_illumination_pass(graph, illumination);
+  setup.request.scaled_normals = style.normals() == NormalMode::RealignedScaled;
+  const GBufferHandles gb = add_raster_pass(graph, setup);
+  StyleContext context_info;
+  context_info.lighting = setup.lighting;
+  context_info.view = setup.camera.view;
+  context_info.background = setup.request.background;
+  context_info.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
+  const int out = style.build(graph, gb, context_info);
+  graph.present(out);
+  graph.execute();
+  write_image(files.png.string(), graph.get<cv::Mat>(out));
+}
+
+void BM_CardTreeCommand(benchmark::State& state) {
+  const CardFiles& files = card_files();
+  const Style style("ink");
+  state.SetLabel("ink");
+  render_card_command(files, style);  // fills the result cache, as a first run would
+  for (auto _ : state)
+    render_card_command(files, style);
+}
+BENCHMARK(BM_CardTreeCommand)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace sylva

@@ -1,0 +1,59 @@
+// One wash of the watercolor pass (passes/watercolor.h) per leaf cluster ("layer"): the
+// cluster's mask, blurred and thresholded (wet-on-wet or wet-on-dry edge), wobbled along the
+// paper gradient, darkened along its rim where pigment pools, continued under the clusters in
+// front of it by normalised convolution, tinted with the cluster's pigment, with leaf detail
+// from the blurred depth test (Luft & Deussen), as optical density over its bounding box.
+//
+// Reads the frame's shared images (Shared: layer labels, display luminance, depth, wobble);
+// writes the returned layer's density image. Layers are independent and may be painted in
+// parallel; glazing them together (in a fixed order) is the caller's.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+
+#include "passes/watercolor_common.h"
+
+namespace sylva::watercolor_internal {
+
+// A leaf cluster's statistics over the frame (sums in one pass, then what derives from them).
+struct Layer {
+  int32_t id = 0;
+  int count = 0;
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive bounding box
+  double sum_color[3] = {0, 0, 0};       // linear, premultiplied by coverage
+  double sum_alpha = 0;
+  double sum_pigment[3] = {0, 0, 0};  // albedo (linear, premultiplied) when it is the pigment
+  double sum_pigment_alpha = 0;
+  double sum_depth = 0, sum_depth2 = 0;
+  // derived
+  float mean_depth = 0, depth_spread = 0;
+  cv::Vec3f mean_color, pigment;  // linear
+  cv::Vec3f pigment_display;      // sRGB-encoded
+  float mean_luminance = 0;       // display (sRGB-encoded) luminance
+};
+
+struct LayerOut {
+  cv::Rect roi;
+  cv::Mat density;  // CV_32FC3 optical density (-log2 transmittance), 0 = no pigment
+};
+
+struct Shared {
+  cv::Size size;
+  cv::Mat label;      // CV_32SC1: index of the layer (back to front), -1 background
+  cv::Mat luminance;  // CV_32FC1 display luminance of the un-premultiplied shaded colour
+  cv::Mat depth;
+  cv::Mat wobble_x, wobble_y;  // CV_32FC1 displacement in px (empty = none)
+  float max_wobble = 0;        // px, bound of |wobble_x|, |wobble_y|
+  float sigma = 0;             // px
+  float half_width = 0.5f;     // of the threshold smoothstep
+  float edge_gain = 0;         // d - 1 at the steepest edge, <= 1 (d = 2: twice the pigment)
+  float detail = 0;
+  const SrgbTables* srgb = nullptr;
+};
+
+// Layer `k` (its index back to front in Shared::label) painted over its bounding box, padded by
+// the blur and the wobble.
+LayerOut paint_layer(const Shared& s, const Layer& layer, int k);
+
+}  // namespace sylva::watercolor_internal
