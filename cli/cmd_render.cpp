@@ -45,14 +45,26 @@ namespace {
 
 // The raster pass, fed by the Luft preprocessing node when `mode` asks for it; the node is
 // always declared, so compile() is what culls it for the original normals.
+// With ao.model other than none, the AO shell node feeds it too (not declared otherwise).
 GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, const IlluminationOptions& io,
-                                uint64_t seed, NormalMode mode) {
+                                uint64_t seed, NormalMode mode, const AoSettings& ao) {
   const int shading =
       add_foliage_illumination_pass(graph, illumination_setup(io, seed, frame.scene));
   RasterSetup setup = frame.setup;
   if (mode != NormalMode::Original) setup.shading = shading;
+  if (ao_model_of(ao.model) != AoShading::Model::None) {
+    AoSetup as;
+    as.scene = &frame.scene;
+    as.settings = ao;
+    as.seed = seed;
+    setup.ao = add_ao_shading_pass(graph, as);
+  }
   setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
-  return add_raster_pass(graph, setup);
+  GBufferHandles gb = add_raster_pass(graph, setup);
+  if (ao.model == "raytraced")
+    gb.ao = add_raytraced_ao_pass(graph, &frame.scene, gb.position, gb.normal, setup.camera.view,
+                                  ao.rays, seed);
+  return gb;
 }
 
 void write_graph(const std::string& path, const RenderGraph& graph) {
@@ -137,7 +149,8 @@ Action add_buffers_command(CLI::App& app) {
                       "Fig. 7c); default: the style's");
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")->required();
-  cmd->add_option("--buffers", o->list, "Comma-separated: color,normal,depth,position,id,ka,albedo")
+  cmd->add_option("--buffers", o->list,
+                  "Comma-separated: color,normal,depth,position,id,ka,albedo,ao (ao: see ao.model)")
       ->capture_default_str();
   cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")
       ->capture_default_str();
@@ -172,7 +185,8 @@ Action add_buffers_command(CLI::App& app) {
     auto frame = prepare_frame(o->scene, o->view);
     frame->setup.request.flat_albedo = style->params().albedo == "flat";  // ids follow --id
     RenderGraph graph;
-    GBufferHandles gb = add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode);
+    GBufferHandles gb =
+        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode, style->params().ao);
     for (Target t : kAllTargets)
       if (has(wanted, t)) graph.present(gb.of(t));
     graph.compile();

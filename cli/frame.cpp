@@ -53,6 +53,8 @@ SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint6
   s.foliage_diagonal = frame.scene.bounds(Role::Foliage).diagonal();
   s.scene_sphere = frame.scene.framing_sphere();
   const Scene* scene = &frame.scene;
+  s.scene = scene;
+  s.seed = seed;
   s.foliage = [run, seed, scene](const FoliageSettings& settings) {
     IlluminationOptions io = settings;
     io.surface_out = run.surface_out;

@@ -10,12 +10,13 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "core/scene/scene.h"
+
 namespace sylva {
 
-struct Sphere {
-  glm::vec3 centre{0.0f};
-  float radius = 0.0f;  // scene units, >= 0; 0 = no volume (a single distinct point)
-};
+// Shells are the scene's Sphere (core/scene/scene.h): a fitted one has radius >= 0 (0 = a
+// single distinct point); a default-constructed one (radius < 0) is empty and occludes
+// nothing.
 
 // The solid ellipsoid { centre + axes * (radii * u) : |u| <= 1 }.
 struct Ellipsoid {

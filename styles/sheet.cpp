@@ -41,6 +41,13 @@ std::string foliage_key(const Style& style) {
   return key;
 }
 
+std::string ao_key(const Style& style) {
+  std::string key;
+  for (const ParamSpec& spec : style.set().specs())
+    if (spec.key.starts_with("ao.")) key += spec.key + "=" + style.set().value_text(spec.key) + ";";
+  return key;
+}
+
 // What a style asks of the raster pass, as a comparable text.
 std::string raster_key(const Style& style, const RasterRequest& request, NormalMode mode) {
   std::ostringstream k;
@@ -48,6 +55,7 @@ std::string raster_key(const Style& style, const RasterRequest& request, NormalM
     << static_cast<int>(request.id_kind) << '|' << request.background.r << ','
     << request.background.g << ',' << request.background.b << ',' << request.background.a;
   if (mode != NormalMode::Original) k << '|' << foliage_key(style);
+  if (style.params().ao.model != "none") k << '|' << ao_key(style);
   return k.str();
 }
 
@@ -134,6 +142,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     return scoped ? std::make_unique<GraphScope>(graph, name) : nullptr;
   };
   std::map<std::string, int> foliage;             // foliage key -> vertex-shading
+  std::map<std::string, int> ao;                  // ao key -> ao-shading
   std::map<std::string, GBufferHandles> rasters;  // raster key -> its targets
   std::map<std::string, RasterRequest> requests;  // raster key -> its request
   SheetPlan plan;
@@ -153,8 +162,29 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     const std::string rkey = raster_key(style, setup.request, mode);
     if (!rasters.contains(rkey)) {
       if (mode != NormalMode::Original) setup.shading = foliage[fkey];
+      // Only styles with AO read (and so run) the shell fitting; model none adds no node.
+      const AoSettings& aos = style.params().ao;
+      if (ao_model_of(aos.model) != AoShading::Model::None) {
+        SYLVA_CHECK(scene.scene != nullptr, "ao.model needs SheetScene::scene");
+        const std::string akey = ao_key(style);
+        if (!ao.contains(akey)) {
+          auto s = scope("ao-" + std::to_string(ao.size()));
+          AoSetup as;
+          as.scene = scene.scene;
+          as.settings = style.params().ao;
+          as.seed = scene.seed;
+          ao[akey] = add_ao_shading_pass(graph, as);
+        }
+        setup.ao = ao[akey];
+      }
       auto s = scope("raster-" + std::to_string(rasters.size()));
       rasters[rkey] = add_raster_pass(graph, setup);
+      if (aos.model == "raytraced") {
+        SYLVA_CHECK(scene.scene != nullptr, "ao.model needs SheetScene::scene");
+        rasters[rkey].ao =
+            add_raytraced_ao_pass(graph, scene.scene, rasters[rkey].position, rasters[rkey].normal,
+                                  setup.camera.view, aos.rays, scene.seed);
+      }
       requests[rkey] = setup.request;
     }
     StyleContext context;

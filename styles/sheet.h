@@ -50,6 +50,10 @@ struct SheetScene {
   Sphere scene_sphere;         // StyleContext::scene_sphere
   // The Luft preprocessing for one style's foliage settings (parsed against the scene).
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;
+  // For styles with ao.model other than none: the scene the AO shells are fitted to (outlives
+  // execute()) and the seed of the fit.
+  const Scene* scene = nullptr;
+  uint64_t seed = 1;
 };
 
 struct SheetPlan {
@@ -62,7 +66,7 @@ struct SheetPlan {
 // Adds the passes of every style to `graph`, presents their images and compiles. With one style
 // nothing is scoped (pass names as in a plain render); with several, style i's passes live
 // in scope "cell-i", raster configuration j in "raster-j", foliage settings k in
-// "foliage-k".
+// "foliage-k", AO settings m in "ao-m".
 SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
                            const SheetScene& scene);
 

@@ -8,6 +8,7 @@ void bind_style_params(ParamSet& set, StyleParams& p) {
   set.add_choice("style.albedo", p.albedo, {"textured", "flat"},
                  "albedo colours: the textures' texels, or each texture's mean (flat tones)");
   bind_foliage_params(set, p.foliage);
+  bind_ao_params(set, p.ao);
   bind_edge_params(set, p.edges);
   bind_ink_params(set, p.ink);
   bind_toon_params(set, p.toon);

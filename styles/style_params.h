@@ -1,11 +1,13 @@
 // Every parameter a style preset can set (styles/presets/*.toml, --set key=value), as one
 // struct bound to dotted keys by bind_style_params: style.* (what the raster pass draws) and
-// foliage.* (the Luft preprocessing), and one section per image pass (toon.*, ...).
+// foliage.* (the Luft preprocessing), ao.* (ambient occlusion), and one section per image pass
+// (toon.*, ...).
 #pragma once
 
 #include <string>
 
 #include "core/params.h"
+#include "npr/ao_pass.h"
 #include "npr/illumination_pass.h"
 #include "passes/composite.h"
 #include "passes/edges.h"
@@ -21,6 +23,7 @@ struct StyleParams {
   // style.albedo: the albedo buffer's colours: the texture's texels, or its mean (flat tones).
   std::string albedo = "textured";
   FoliageSettings foliage;
+  AoSettings ao;  // ao.*: ambient occlusion (npr/ao_pass.h)
   EdgeParams edges;
   InkParams ink;
   ToonParams toon;

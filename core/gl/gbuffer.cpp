@@ -22,6 +22,8 @@ const char* target_name(Target t) {
       return "ka";
     case Target::Albedo:
       return "albedo";
+    case Target::Ao:
+      return "ao";
   }
   return "unknown";
 }
@@ -46,6 +48,8 @@ cv::Mat& target_image(GBuffer& buffer, Target t) {
       return buffer.ka;
     case Target::Albedo:
       return buffer.albedo;
+    case Target::Ao:
+      return buffer.ao;
   }
   SYLVA_CHECK(false, "unknown target");
 }

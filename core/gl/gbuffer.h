@@ -17,6 +17,7 @@ enum class Target : uint32_t {
   Ka = 1u << 5,        // CV_32FC1 ambient coefficient in [0, 1], background 0
   Albedo = 1u << 6,    // CV_8UC4 BGRA, sRGB: unlit base colour (material x texture x vertex
                        // colour); alpha = coverage, background 0
+  Ao = 1u << 7,        // CV_32FC1 ambient visibility in [0, 1] (RasterRequest::ao), bg 0
 };
 using TargetMask = uint32_t;
 constexpr TargetMask operator|(Target a, Target b) {
@@ -34,14 +35,14 @@ int target_count(TargetMask m);
 // Every target, in bit order (also the raster pass's colour-attachment slot order).
 inline constexpr Target kAllTargets[] = {Target::Color,    Target::Normal, Target::Depth,
                                          Target::Position, Target::Id,     Target::Ka,
-                                         Target::Albedo};
-inline constexpr TargetMask kAllTargetsMask = (1u << 7) - 1u;
+                                         Target::Albedo,   Target::Ao};
+inline constexpr TargetMask kAllTargetsMask = (1u << 8) - 1u;
 
 enum class IdKind { Primitive, Cluster, Object };  // Object = mesh index + 1
 
 struct GBuffer {
   TargetMask targets = 0;
-  cv::Mat color, normal, depth, position, id, ka, albedo;
+  cv::Mat color, normal, depth, position, id, ka, albedo, ao;
 };
 
 // The image of one target (empty when it was not rendered).

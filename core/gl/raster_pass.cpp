@@ -20,6 +20,8 @@ int GBufferHandles::of(Target t) const {
       return ka;
     case Target::Albedo:
       return albedo;
+    case Target::Ao:
+      return ao;
   }
   return -1;
 }
@@ -41,6 +43,8 @@ cv::Mat& slot(GBuffer& b, Target t) {
       return b.ka;
     case Target::Albedo:
       return b.albedo;
+    case Target::Ao:
+      return b.ao;
   }
   return b.color;
 }
@@ -56,22 +60,25 @@ GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
   h.id = graph.resource("id");
   h.ka = graph.resource("ka");
   h.albedo = graph.resource("albedo");
+  h.ao = graph.resource("ao");
   std::vector<int> reads;
   if (setup.shading >= 0) reads.push_back(setup.shading);
-  graph.add_pass("raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka, h.albedo},
-                 [h, setup](PassContext& ctx) {
-                   if (setup.shading >= 0)
-                     setup.rasterizer->set_vertex_shading(
-                         *ctx.read<std::shared_ptr<const VertexShading>>(setup.shading));
-                   RasterRequest request = setup.request;
-                   request.targets = 0;
-                   for (Target t : kAllTargets)
-                     if (ctx.wanted(h.of(t))) request.targets |= static_cast<TargetMask>(t);
-                   GBuffer buffers =
-                       setup.rasterizer->render(setup.camera, setup.lighting, request);
-                   for (Target t : kAllTargets)
-                     if (has(request.targets, t)) ctx.write(h.of(t), slot(buffers, t));
-                 });
+  if (setup.ao >= 0) reads.push_back(setup.ao);
+  graph.add_pass(
+      "raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka, h.albedo, h.ao},
+      [h, setup](PassContext& ctx) {
+        if (setup.shading >= 0)
+          setup.rasterizer->set_vertex_shading(
+              *ctx.read<std::shared_ptr<const VertexShading>>(setup.shading));
+        RasterRequest request = setup.request;
+        if (setup.ao >= 0) request.ao = *ctx.read<std::shared_ptr<const AoShading>>(setup.ao);
+        request.targets = 0;
+        for (Target t : kAllTargets)
+          if (ctx.wanted(h.of(t))) request.targets |= static_cast<TargetMask>(t);
+        GBuffer buffers = setup.rasterizer->render(setup.camera, setup.lighting, request);
+        for (Target t : kAllTargets)
+          if (has(request.targets, t)) ctx.write(h.of(t), slot(buffers, t));
+      });
   return h;
 }
 

@@ -1,5 +1,5 @@
-// The raster pass as a render-graph node: writes the seven G-buffer resources ("color",
-// "normal", "depth", "position", "id", "ka", "albedo", each a cv::Mat as described in
+// The raster pass as a render-graph node: writes the eight G-buffer resources ("color",
+// "normal", "depth", "position", "id", "ka", "albedo", "ao", each a cv::Mat as described in
 // gbuffer.h) and,
 // when run, asks the rasteriser for only the targets some live pass reads or the caller
 // presents.
@@ -11,7 +11,7 @@
 namespace sylva {
 
 struct GBufferHandles {
-  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1, albedo = -1;
+  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1, albedo = -1, ao = -1;
   int of(Target t) const;
 };
 
@@ -23,6 +23,9 @@ struct RasterSetup {
   // A resource holding std::shared_ptr<const VertexShading> (the Luft preprocessing) the
   // pass reads and applies before drawing; -1 = draw the uploaded normals.
   int shading = -1;
+  // A resource holding std::shared_ptr<const AoShading> (the fitted AO shells, e.g.
+  // npr/ao_pass.h) that replaces request.ao when the pass runs; -1 = request.ao as given.
+  int ao = -1;
 };
 
 GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup);

@@ -18,7 +18,7 @@ namespace sylva {
 namespace {
 
 constexpr GLsizei kDrawChunkIndices = 3 * 32768;  // indices per draw call (32k triangles)
-constexpr int kSlots = 7;  // colour attachments, one per Target in kAllTargets order
+constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
 constexpr double kMaxFramebufferBytes = 4.0 * (1u << 30);
@@ -34,7 +34,7 @@ struct SlotFormat {
   int cv_type;
 };
 
-// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka, albedo.
+// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka, albedo, ao.
 constexpr SlotFormat kSlotFormats[kSlots] = {
     {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
     {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
@@ -43,9 +43,10 @@ constexpr SlotFormat kSlotFormats[kSlots] = {
     {GL_R32UI, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1},
     {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
     {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
+    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
 };
 static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka &&
-              kAllTargets[6] == Target::Albedo);
+              kAllTargets[6] == Target::Albedo && kAllTargets[7] == Target::Ao);
 
 // The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
 // transparent surround); all texels when none is.
@@ -223,6 +224,21 @@ struct Rasterizer::Impl {
     glUniform4fv(p.light_vector, kMaxLights, &vectors[0][0]);
     glUniform3fv(p.light_color, kMaxLights, &colors[0][0]);
     glUniform2fv(p.light_spec, kMaxLights, &specs[0][0]);
+    set_ao_uniforms(p, request.ao);
+  }
+
+  static void set_ao_uniforms(const RasterProgram& p, const AoShading& ao) {
+    glUniform1i(p.ao_model, static_cast<int>(ao.model));
+    glUniform1f(p.ao_constant, ao.constant);
+    glUniform1f(p.ao_alpha_rho, ao.alpha_rho);
+    const int n = ao.model == AoShading::Model::Shells ? static_cast<int>(ao.centres.size()) : 0;
+    glUniform1i(p.ao_shell_count, n);
+    if (n == 0) return;
+    glUniform3fv(p.ao_centre, n, &ao.centres[0][0]);
+    glUniform3fv(p.ao_anchor, n, &ao.anchors[0][0]);
+    glUniformMatrix3fv(p.ao_inverse, n, GL_FALSE, &ao.inverse[0][0][0]);
+    glUniformMatrix3fv(p.ao_transpose, n, GL_FALSE, &ao.transpose[0][0][0]);
+    glUniform1fv(p.ao_volume_scale, n, ao.volume_scale.data());
   }
 
   void draw_meshes(TargetMask targets, const Camera& camera, const Lighting& lighting,
@@ -297,7 +313,8 @@ struct Rasterizer::Impl {
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     GBuffer out;
     out.targets = targets;
-    const TargetMask averaged = Target::Normal | Target::Depth | Target::Position | Target::Ka;
+    const TargetMask averaged =
+        Target::Normal | Target::Depth | Target::Position | Target::Ka | Target::Ao;
     cv::Mat coverage;
     if (ssaa > 1 && (targets & averaged) != 0) coverage = read_coverage();
     for (int i = 0; i < kSlots; ++i) {
@@ -375,6 +392,18 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   SYLVA_CHECK(camera.width >= 1 && camera.height >= 1, "camera without a size");
   if (request.ssaa < 1 || request.ssaa > 4) throw InputError("--ssaa", "must be in [1, 4]");
   validate_lighting(lighting);
+  const AoShading& ao = request.ao;
+  if (ao.model == AoShading::Model::Shells) {
+    const size_t n = ao.centres.size();
+    SYLVA_CHECK(n >= 1 && n <= size_t(kMaxAoShells) && ao.anchors.size() == n &&
+                    ao.inverse.size() == n && ao.transpose.size() == n &&
+                    ao.volume_scale.size() == n,
+                "AO shells: 1 to 64 shells, each with centre, anchor, matrices and volume");
+  }
+  if (!(ao.constant >= 0.0f && ao.constant <= 1.0f))
+    throw InputError("ao.constant", "must be in [0, 1]");
+  if (!(std::isfinite(ao.alpha_rho) && ao.alpha_rho >= 0.0f))
+    throw InputError("ao.alpha_rho", "must be finite and >= 0");
   s.context.make_current();
 
   GLint max_size = 0;

@@ -11,6 +11,7 @@
 
 #include <memory>
 
+#include "core/gl/ao_shading.h"
 #include "core/gl/camera.h"
 #include "core/gl/gbuffer.h"
 #include "core/gl/gl_context.h"
@@ -26,6 +27,7 @@ struct RasterRequest {
   glm::vec4 background{1, 1, 1, 0};  // colour target clear, linear RGBA
   bool scaled_normals = false;       // normal target keeps |N| = ka (Luft Fig. 7c), not unit
   bool flat_albedo = false;          // albedo target: each texture's mean colour (flat toon tones)
+  AoShading ao;                      // the AO target and the colour's ambient visibility
 };
 
 // Replacement per-vertex shading inputs, per scene mesh (scene order): normals (world

@@ -23,6 +23,7 @@ uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object
 uniform uint u_object_id;   // mesh index + 1
 
 out vec3 v_view_pos;
+out vec3 v_world_pos;
 out vec3 v_normal;
 out float v_ka;
 out vec2 v_uv;
@@ -39,6 +40,7 @@ void main() {
   // The view matrix is rigid, so its upper 3x3 rotates normals.
   v_normal = mat3(u_view) * (len > 1e-20 ? a_normal / len : vec3(0.0));
   v_view_pos = view_pos.xyz;
+  v_world_pos = a_position;
   v_uv = a_uv;
   v_color = a_color;
   v_id = u_id_kind == 0 ? a_ids.x : (u_id_kind == 1 ? a_ids.y : u_object_id);
@@ -49,6 +51,7 @@ void main() {
 
 const char* const kFragmentBody = R"GLSL(
 in vec3 v_view_pos;
+in vec3 v_world_pos;
 in vec3 v_normal;
 in float v_ka;
 in vec2 v_uv;
@@ -73,6 +76,18 @@ uniform int u_light_count;
 uniform vec4 u_light_vector[8]; // view space; w = 0 direction toward the light, 1 position
 uniform vec3 u_light_color[8];  // linear intensity
 uniform vec2 u_light_spec[8];   // (specular weight, shininess)
+uniform mat4 u_view;
+
+// Ambient visibility (AoShading in rasterizer.h): 0 none, 1 constant, 2 ka, 3 Hegeman shells.
+uniform int u_ao_model;
+uniform float u_ao_constant;
+uniform float u_ao_alpha_rho;
+uniform int u_ao_shell_count;
+uniform vec3 u_ao_centre[64];
+uniform vec3 u_ao_anchor[64];
+uniform mat3 u_ao_inverse[64];    // L^-1: world -> the shell's unit ball
+uniform mat3 u_ao_transpose[64];  // L^T: world normal -> plane normal in the unit ball
+uniform float u_ao_volume_scale[64];  // |det L|
 
 #ifdef OUT_COLOR
 layout(location = 0) out vec4 o_color;
@@ -95,6 +110,9 @@ layout(location = 5) out float o_ka;
 #ifdef OUT_ALBEDO
 layout(location = 6) out vec4 o_albedo;
 #endif
+#ifdef OUT_AO
+layout(location = 7) out float o_ao;
+#endif
 
 vec3 srgb_encode(vec3 c) {
   c = clamp(c, 0.0, 1.0);
@@ -110,6 +128,49 @@ vec3 surface_normal() {
   vec3 n = len > 1e-12 ? v_normal / len : vec3(0.0, 0.0, 1.0);
   const bool keep = u_oriented_foliage && v_role == 0u;  // Role::Foliage
   return u_double_sided && !gl_FrontFacing && !keep ? -n : n;
+}
+
+// Hegeman et al. Eq. 4-6 for the world point x with world normal n, as npr/hegeman_ao.cpp's
+// hegeman_visibility (ball_cap in the unit ball of the shell whose anchor is nearest).
+float hegeman_visibility(vec3 x, vec3 n) {
+  int s = 0;
+  float best = 3.4e38;
+  for (int i = 0; i < u_ao_shell_count; ++i) {
+    vec3 e = x - u_ao_anchor[i];
+    float d = dot(e, e);
+    if (d < best) {
+      best = d;
+      s = i;
+    }
+  }
+  if (!(u_ao_alpha_rho > 0.0) || !(u_ao_volume_scale[s] > 0.0)) return 1.0;
+  vec3 to_centre = -(u_ao_inverse[s] * (x - u_ao_centre[s]));
+  vec3 nu = u_ao_transpose[s] * n;
+  float len = length(nu);
+  float t = 0.0;
+  vec3 in_plane = vec3(0.0);
+  if (len > 0.0) {
+    vec3 dir = nu / len;
+    t = dot(dir, to_centre);
+    in_plane = to_centre - t * dir;
+  } else {
+    t = -length(to_centre);  // zero normal: face away from the centre
+  }
+  float h = clamp(1.0 + t, 0.0, 2.0);
+  float d = length(in_plane);
+  float volume = 3.14159265358979 * h * h * (3.0 - h) / 3.0 * u_ao_volume_scale[s];  // Eq. 4
+  float h2 = h * h, d2 = d * d;
+  float f = h2 + d2 > 0.0 ? clamp(h2 / (h2 + d2), 0.0, 1.0) : 1.0;  // Eq. 5
+  float exponent = u_ao_alpha_rho * f * volume;
+  if (!(exponent > 0.0)) return 1.0;
+  return clamp(exp(-exponent), 0.0, 1.0);  // Eq. 6
+}
+
+float ambient_visibility(vec3 n_view) {
+  if (u_ao_model == 1) return u_ao_constant;
+  if (u_ao_model == 2) return clamp(v_ka, 0.0, 1.0);
+  if (u_ao_model == 3) return hegeman_visibility(v_world_pos, transpose(mat3(u_view)) * n_view);
+  return 1.0;
 }
 
 void main() {
@@ -128,7 +189,11 @@ void main() {
   // Luft et al. Eq. 1 (no shadowing term): I = Ia ka + sum_i Ii [kd (N.L) + ks (N.H)^n],
   // Blinn's half vector in place of Phong's reflection vector. Point lights do not attenuate.
   vec3 v = u_ortho ? vec3(0.0, 0.0, 1.0) : normalize(-v_view_pos);
-  vec3 diffuse = vec3(u_ambient * clamp(v_ka, 0.0, 1.0));
+  float ambient = u_ambient * clamp(v_ka, 0.0, 1.0);
+  // AO multiplies the ambient term; with model none (0) the colour is exactly as without AO,
+  // and with ka (2) the AO is ka itself, already applied.
+  if (u_ao_model == 1 || u_ao_model == 3) ambient *= ambient_visibility(n);
+  vec3 diffuse = vec3(ambient);
   vec3 specular = vec3(0.0);
   for (int i = 0; i < u_light_count; ++i) {
     vec3 l = u_light_vector[i].xyz;
@@ -169,6 +234,9 @@ void main() {
   if (u_flat_albedo)
     albedo = (u_base_color * v_color).rgb * (u_has_texture ? u_texture_mean : vec3(1.0));
   o_albedo = vec4(srgb_encode(albedo), 1.0);
+#endif
+#ifdef OUT_AO
+  o_ao = ambient_visibility(n);
 #endif
 }
 )GLSL";
@@ -279,6 +347,15 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.light_vector = loc("u_light_vector");
   p.light_color = loc("u_light_color");
   p.light_spec = loc("u_light_spec");
+  p.ao_model = loc("u_ao_model");
+  p.ao_constant = loc("u_ao_constant");
+  p.ao_alpha_rho = loc("u_ao_alpha_rho");
+  p.ao_shell_count = loc("u_ao_shell_count");
+  p.ao_centre = loc("u_ao_centre");
+  p.ao_anchor = loc("u_ao_anchor");
+  p.ao_inverse = loc("u_ao_inverse");
+  p.ao_transpose = loc("u_ao_transpose");
+  p.ao_volume_scale = loc("u_ao_volume_scale");
   return p;
 }
 

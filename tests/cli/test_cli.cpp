@@ -253,6 +253,36 @@ TEST(Cli, BuffersReadBackExactly) {
   EXPECT_NE(read_file(dir + ".dot").find("raster"), std::string::npos);
 }
 
+// ao.model feeds the AO buffer: float32 in [0, 1], background 0; bad ao.* values exit 2.
+TEST(Cli, BuffersWriteAmbientOcclusion) {
+  const std::string dir = temp_dir("buffers-ao") + "/out";
+  const RunResult r = run_sylva("buffers " + small_tree() + " --size 64x48 --out-dir " + dir +
+                                " --buffers ao,depth --set ao.model=hegeman-sphere");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const cv::Mat ao = cv::imread(dir + "/ao.tiff", cv::IMREAD_UNCHANGED);
+  const cv::Mat depth = cv::imread(dir + "/depth.tiff", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(ao.type(), CV_32FC1);
+  ASSERT_EQ(ao.size(), cv::Size(64, 48));
+  int dark = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const float a = ao.at<float>(y, x);
+      ASSERT_TRUE(a >= 0.0f && a <= 1.0f) << a;
+      if (depth.at<float>(y, x) == 0.0f) {
+        EXPECT_EQ(a, 0.0f);
+      }
+      dark += depth.at<float>(y, x) > 0.0f && a < 0.9f ? 1 : 0;
+    }
+  EXPECT_GT(dark, 0);
+  EXPECT_TRUE(file_exists(dir + "/ao.preview.png"));
+  const std::string base = "buffers " + small_tree() + " --size 32x32 --out-dir " + dir + "2 ";
+  expect_input_error(base + "--set ao.model=foo", "ao.model");
+  expect_input_error(base + "--set ao.shells=65", "ao.shells");
+  expect_input_error(base + "--set ao.rays=0", "ao.rays");
+  expect_input_error(base + "--set ao.constant=2", "ao.constant");
+  expect_input_error(base + "--set ao.alpha_rho=-1", "ao.alpha_rho");
+}
+
 TEST(Cli, InfoReportsTheSample) {
   RunResult r = run_sylva("info --json " + small_tree());
   ASSERT_EQ(r.status, 0) << r.output;

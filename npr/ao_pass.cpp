@@ -1,0 +1,209 @@
+#include "npr/ao_pass.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <memory>
+
+#include "core/error.h"
+#include "npr/ao_reference.h"
+#include "npr/ao_uniforms.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr int kFitRays = 64;
+
+bool parse_number(const std::string& text, double& v) {
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, v);
+  return !text.empty() && ec == std::errc() && p == end && std::isfinite(v);
+}
+
+}  // namespace
+
+void bind_ao_params(ParamSet& set, AoSettings& s) {
+  set.add_choice("ao.model", s.model,
+                 {"none", "constant", "luft-density", "hegeman-sphere", "hegeman-ellipsoid",
+                  "hegeman-shells", "raytraced"},
+                 "ambient occlusion multiplying the ambient term and written to the ao buffer");
+  set.add_float("ao.constant", s.constant, 0, 1, "", "visibility of ao.model = constant");
+  set.add_text(
+      "ao.alpha_rho", s.alpha_rho,
+      [](const std::string& text, const std::string& where) {
+        double v = 0;
+        if (text == "auto") return;
+        if (!parse_number(text, v) || v < 0.0 || v > 3.4e38)
+          throw InputError(where, "must be 'auto' or a number >= 0, got '" + text + "'");
+      },
+      "auto or a number >= 0 (per scene unit cubed)",
+      "Hegeman Eq. 6 occluder density x size; auto = fitted to ray-traced AO");
+  set.add_int("ao.shells", s.shells, 1, kMaxAoShells, "shells",
+              "k of ao.model = hegeman-shells (k-means clusters of the foliage)");
+  set.add_int("ao.rays", s.rays, 1, 4096, "rays per pixel", "rays of ao.model = raytraced");
+}
+
+AoShading::Model ao_model_of(const std::string& model) {
+  if (model == "none" || model == "raytraced") return AoShading::Model::None;
+  if (model == "constant") return AoShading::Model::Constant;
+  if (model == "luft-density") return AoShading::Model::Ka;
+  if (model == "hegeman-sphere" || model == "hegeman-ellipsoid" || model == "hegeman-shells")
+    return AoShading::Model::Shells;
+  throw InputError("ao.model", "unknown model '" + model +
+                                   "' (allowed: none, constant, luft-density, hegeman-sphere, "
+                                   "hegeman-ellipsoid, hegeman-shells, raytraced)");
+}
+
+AoReferenceScene make_scene_tracer(const Scene& scene) {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> indices;
+  std::vector<int> triangle_material;
+  bool any_cutout = false;
+  for (const Mesh& m : scene.meshes) {
+    const auto base = static_cast<uint32_t>(positions.size());
+    positions.insert(positions.end(), m.positions.begin(), m.positions.end());
+    if (m.uvs.size() == m.positions.size()) {
+      uvs.insert(uvs.end(), m.uvs.begin(), m.uvs.end());
+    } else {
+      uvs.resize(positions.size(), glm::vec2(0.0f));
+    }
+    for (uint32_t i : m.indices)
+      indices.push_back(base + i);
+    int cutout = -1;
+    if (m.material >= 0 && size_t(m.material) < scene.materials.size()) {
+      const Material& mat = scene.materials[size_t(m.material)];
+      if (mat.alpha_mode != AlphaMode::Opaque && mat.base_color_texture >= 0 &&
+          size_t(mat.base_color_texture) < scene.textures.size())
+        cutout = m.material;
+    }
+    any_cutout = any_cutout || cutout >= 0;
+    triangle_material.insert(triangle_material.end(), m.triangle_count(), cutout);
+  }
+  if (!any_cutout) return AoReferenceScene(positions, indices);
+  const Scene* s = &scene;
+  auto materials = std::make_shared<const std::vector<int>>(std::move(triangle_material));
+  auto alpha = [s, materials](uint32_t triangle, glm::vec2 uv) -> float {
+    const Material& mat = s->materials[size_t((*materials)[triangle])];
+    const Texture& t = s->textures[size_t(mat.base_color_texture)];
+    if (t.width <= 0 || t.height <= 0) return 1.0f;
+    const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
+    const int x = std::clamp(int(u * float(t.width)), 0, t.width - 1);
+    const int y = std::clamp(int(v * float(t.height)), 0, t.height - 1);
+    const size_t at = 4 * (size_t(y) * size_t(t.width) + size_t(x)) + 3;
+    const float a = at < t.rgba.size() ? t.rgba[at] / 255.0f : 1.0f;
+    const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
+    return a * mat.base_color.a >= cutoff ? 1.0f : 0.0f;
+  };
+  auto is_cutout = [materials](uint32_t triangle) { return (*materials)[triangle] >= 0; };
+  AoHitFilter filter = make_alpha_cutout_filter(uvs, indices, alpha, 0.5f, is_cutout);
+  return AoReferenceScene(positions, indices, std::move(filter));
+}
+
+std::vector<glm::vec3> foliage_vertices(const Scene& scene) {
+  std::vector<glm::vec3> out;
+  for (const Mesh& m : scene.meshes) {
+    std::vector<char> used(m.positions.size(), 0);
+    for (size_t t = 0; t < m.triangle_count(); ++t) {
+      if (t < m.roles.size() && m.roles[t] != Role::Foliage) continue;
+      if (m.roles.empty()) continue;
+      for (int k = 0; k < 3; ++k)
+        used[m.indices[3 * t + k]] = 1;
+    }
+    for (size_t v = 0; v < used.size(); ++v)
+      if (used[v]) out.push_back(m.positions[v]);
+  }
+  return out;
+}
+
+AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t seed) {
+  AoShading ao;
+  ao.model = ao_model_of(s.model);
+  ao.constant = s.constant;
+  if (ao.model != AoShading::Model::Shells) return ao;
+  const std::vector<glm::vec3> points = foliage_vertices(scene);
+  if (points.empty()) throw InputError("ao.model", "'" + s.model + "' needs foliage");
+  AoShellFit fit;
+  fit.ellipsoid = s.model != "hegeman-sphere";
+  fit.shells = s.model == "hegeman-shells" ? s.shells : 1;
+  fit.seed = seed;
+  if (s.alpha_rho == "auto") {
+    for (const Mesh& m : scene.meshes)
+      for (size_t t = 0; t < m.triangle_count() && t < m.roles.size(); ++t) {
+        if (m.roles[t] != Role::Foliage) continue;
+        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                        c = m.positions[m.indices[3 * t + 2]];
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        if (!(glm::dot(n, n) > 0.0f)) continue;
+        fit.sample_points.push_back((a + b + c) / 3.0f);
+        fit.sample_normals.push_back(glm::normalize(n));
+      }
+    const Scene* sc = &scene;
+    fit.trace = [sc, seed](const std::vector<glm::vec3>& p, const std::vector<glm::vec3>& n) {
+      AoReferenceOptions options;
+      options.rays = kFitRays;
+      options.seed = seed;
+      return make_scene_tracer(*sc).visibility(p, n, options);
+    };
+  } else {
+    double v = 0.0;
+    if (!parse_number(s.alpha_rho, v) || v < 0.0)
+      throw InputError("ao.alpha_rho", "must be 'auto' or a number >= 0");
+    fit.alpha_rho = float(v);
+  }
+  return fit_ao_shading(points, fit);
+}
+
+int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
+  SYLVA_CHECK(setup.scene != nullptr, "AO shading needs a scene");
+  const int out = graph.resource("ao-shading");
+  graph.add_pass("ao-shells", {}, {out}, [out, setup](PassContext& ctx) {
+    auto ao = std::make_shared<const AoShading>(
+        scene_ao_shading(*setup.scene, setup.settings, setup.seed));
+    ctx.write(out, std::shared_ptr<const AoShading>(ao));
+  });
+  return out;
+}
+
+}  // namespace sylva
+
+namespace sylva {
+
+int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
+                          const glm::mat4& view, int rays, uint64_t seed) {
+  SYLVA_CHECK(scene != nullptr, "ray-traced AO needs a scene");
+  const int out = graph.resource("ao-raytraced");
+  const glm::mat4 to_world = glm::inverse(view);
+  graph.add_pass("ao-raytraced", {position, normal}, {out}, [=](PassContext& ctx) {
+    const cv::Mat& pos = ctx.read<cv::Mat>(position);
+    const cv::Mat& nor = ctx.read<cv::Mat>(normal);
+    SYLVA_CHECK(pos.type() == CV_32FC3 && nor.type() == CV_32FC3 && pos.size() == nor.size(),
+                "ray-traced AO reads view-space position and normal targets");
+    std::vector<glm::vec3> points, normals;
+    std::vector<int> pixels;
+    for (int y = 0; y < pos.rows; ++y)
+      for (int x = 0; x < pos.cols; ++x) {
+        const cv::Vec3f n = nor.at<cv::Vec3f>(y, x);
+        if (n == cv::Vec3f(0, 0, 0)) continue;  // background
+        const cv::Vec3f p = pos.at<cv::Vec3f>(y, x);
+        points.push_back(glm::vec3(to_world * glm::vec4(p[0], p[1], p[2], 1.0f)));
+        normals.push_back(glm::mat3(to_world) * glm::vec3(n[0], n[1], n[2]));
+        pixels.push_back(y * pos.cols + x);
+      }
+    cv::Mat ao = cv::Mat::zeros(pos.size(), CV_32FC1);
+    if (!points.empty()) {
+      const AoReferenceScene tracer = make_scene_tracer(*scene);
+      AoReferenceOptions options;
+      options.rays = rays;
+      options.seed = seed;
+      const std::vector<float> v = tracer.visibility(points, normals, options);
+      for (size_t i = 0; i < pixels.size(); ++i)
+        ao.at<float>(pixels[i] / pos.cols, pixels[i] % pos.cols) = v[i];
+    }
+    ctx.write(out, ao);
+  });
+  return out;
+}
+
+}  // namespace sylva

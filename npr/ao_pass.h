@@ -1,0 +1,76 @@
+// Ambient occlusion as a scene-level render-graph node (DESIGN.md §3): the ao.* parameters,
+// and the node that fits Hegeman et al.'s shells (npr/ao_shells.h) to the foliage vertices
+// once per scene and writes "ao-shading" (std::shared_ptr<const AoShading>, the uniforms the
+// raster pass evaluates per fragment into its AO target and the colour's ambient term). The
+// raster pass reads the node only when ao.model is not none, so compile() culls it otherwise.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/gl/rasterizer.h"
+#include "core/graph/render_graph.h"
+#include "core/params.h"
+#include "core/scene/scene.h"
+#include "npr/ao_reference.h"
+
+namespace sylva {
+
+// The ao.* preset keys as a user gives them.
+struct AoSettings {
+  // none | constant | luft-density | hegeman-sphere | hegeman-ellipsoid | hegeman-shells |
+  // raytraced. none: no AO (the AO target is 1 on geometry, images unchanged). raytraced:
+  // the ao buffer only (a pass after the raster pass); the colour's ambient term is not
+  // darkened by it.
+  std::string model = "none";
+  // constant: the visibility everywhere, [0, 1]. 0.6 is about the mean ray-traced visibility
+  // of the sample crowns' leaves, so switching from hegeman-* keeps the overall tone.
+  float constant = 0.6f;
+  // Hegeman et al. Eq. 6 alpha * rho: "auto" (fitted by least squares, npr/ao_fit.h, to
+  // ray-traced visibility at 256 foliage vertices, 64 rays, seeded by the scene seed) or a
+  // number >= 0 per scene unit cubed (npr/hegeman_ao.h).
+  std::string alpha_rho = "auto";
+  int shells = 4;  // hegeman-shells: k, [1, 64]
+  int rays = 64;   // raytraced: rays per pixel, [1, 4096]
+};
+
+// Binds ao.model, ao.constant, ao.alpha_rho, ao.shells and ao.rays with their ranges.
+void bind_ao_params(ParamSet& set, AoSettings& s);
+// What the raster pass evaluates for the model (raytraced: None, the raster pass draws no
+// AO). Throws InputError("ao.model", ...) for an unknown model.
+AoShading::Model ao_model_of(const std::string& model);
+
+// The ray tracer over every scene triangle; alpha-MASK/BLEND materials with a base-colour
+// texture let rays through texels whose alpha (times the material's) is below the cutoff
+// (BLEND: 0.5, as the raster pass draws it), nearest texel, repeat wrapping.
+AoReferenceScene make_scene_tracer(const Scene& scene);
+
+struct AoSetup {
+  const Scene* scene = nullptr;  // outlives execute()
+  AoSettings settings;
+  uint64_t seed = 1;  // k-means seeding and the alpha_rho fit's samples and rays
+};
+
+// What the AO node computes for `settings` (ao_model_of; for hegeman-*: the shells fitted to
+// the foliage vertices, k = 1 for sphere and ellipsoid, seeded by `seed`, and alpha_rho as
+// given or, for auto, fitted to ray-traced visibility (make_scene_tracer, 64 rays) at up to
+// 256 foliage-triangle centroids picked with `seed`). Throws InputError("ao.model", ...) for
+// hegeman-* on a scene without foliage.
+AoShading scene_ao_shading(const Scene& scene, const AoSettings& settings, uint64_t seed);
+
+// The foliage vertices (those of triangles with Role::Foliage), world space.
+std::vector<glm::vec3> foliage_vertices(const Scene& scene);
+
+// Returns the "ao-shading" resource. The node fits the shells (hegeman-*; k = 1 for sphere
+// and ellipsoid) and alpha_rho when asked; for constant / luft-density it only passes the
+// model on. Throws InputError("ao.*", ...) when run on a scene without foliage for hegeman-*.
+int add_ao_shading_pass(RenderGraph& graph, AoSetup setup);
+
+// ao.model = raytraced: reads the raster pass's view-space "position" and "normal" targets and
+// writes "ao-raytraced" (CV_32FC1, AoReferenceScene::visibility with `rays` rays seeded by
+// `seed` at each covered pixel, moved to world space by inverse(view); background 0).
+int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
+                          const glm::mat4& view, int rays, uint64_t seed);
+
+}  // namespace sylva
