@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/random.h"
 
 namespace sylva {
 namespace {
@@ -20,17 +21,6 @@ namespace {
 // enough to live on the stack.
 constexpr int kRayChunk = 64;
 constexpr double kInvGolden = 0.6180339887498949;  // 1 / golden ratio
-
-uint64_t splitmix64(uint64_t& state) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-double uniform01(uint64_t& state) {
-  return double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
-}
 
 bool finite3(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/random.h"
 
 namespace sylva {
 namespace {
@@ -19,18 +20,6 @@ constexpr int kMaxKMeansIterations = 100;
 // Fixed seed of the shuffle in front of the move-to-front miniball: any order gives the same
 // ball, a random one gives the expected linear running time.
 constexpr uint64_t kSphereShuffleSeed = 0x5eed5eed5eedull;
-
-uint64_t splitmix64(uint64_t& state) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-// Uniform in [0, 1) with 53 random bits.
-double uniform01(uint64_t& state) {
-  return double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
-}
 
 void check_points(const std::vector<glm::vec3>& points) {
   if (points.empty()) throw InputError("foliage vertices", "need at least one vertex, got none");

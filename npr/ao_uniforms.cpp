@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "npr/ao_fit.h"
 #include "npr/ao_shells.h"
 #include "npr/hegeman_ao.h"
@@ -13,13 +14,6 @@ namespace sylva {
 namespace {
 
 constexpr size_t kFitSamples = 256;
-
-uint64_t splitmix64(uint64_t& state) {
-  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 float fitted_alpha_rho(const Shells& shells, const AoShellFit& fit) {
   const size_t n = std::min(fit.sample_points.size(), fit.sample_normals.size());

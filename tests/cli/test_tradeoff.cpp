@@ -14,19 +14,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string& tradeoff_tree() {
-  static std::string path = [] {
-    std::string p = temp_dir("tradeoff-tree") + "/tree.glb";
-    RunResult r = run_sylva("sample tree --leaves 2000 --seed 3 -o " + p);
-    EXPECT_EQ(r.status, 0) << r.output;
-    return p;
-  }();
-  return path;
-}
-
 TEST(Tradeoff, QuickFoliageSweep) {
   const std::string dir = temp_dir("tradeoff");
-  const RunResult r = run_sylva("tradeoff " + tradeoff_tree() +
+  const RunResult r = run_sylva("tradeoff " + small_tree() +
                                 " --study foliage --fractions 1,0.25 --grids 16,32 -o " + dir +
                                 "/study.csv --plot " + dir + "/study.png");
   ASSERT_EQ(r.status, 0) << r.output;
@@ -55,7 +45,7 @@ TEST(Tradeoff, QuickFoliageSweep) {
 // the reference and of the full-generator run.
 TEST(Tradeoff, SetChoosesTheBaseSettings) {
   const std::string dir = temp_dir("tradeoff-set");
-  const RunResult r = run_sylva("tradeoff " + tradeoff_tree() +
+  const RunResult r = run_sylva("tradeoff " + small_tree() +
                                 " --study foliage --fractions 1 --grids 16 --normal-sources "
                                 "surface --encodings attribute --set foliage.tau=3 -q -o " +
                                 dir + "/s.csv");
@@ -69,7 +59,7 @@ TEST(Tradeoff, SetChoosesTheBaseSettings) {
 TEST(Tradeoff, BadInputWritesNothing) {
   const std::string dir = temp_dir("tradeoff-bad");
   const std::string out = " -o " + dir + "/s.csv --plot " + dir + "/s.png";
-  const std::string base = "tradeoff " + tradeoff_tree() + out;
+  const std::string base = "tradeoff " + small_tree() + out;
   struct Case {
     std::string args, needle;
   };
@@ -88,11 +78,11 @@ TEST(Tradeoff, BadInputWritesNothing) {
            {base + " --study foliage --encodings rgb", "--encodings"},
            {base + " --study foliage --thresholds half", "--thresholds"},
            {base + " --study foliage --ka-min 2", "--ka-min"},
-           {"tradeoff " + tradeoff_tree() + " --study foliage -o " + dir + "/s.txt", "--output"},
-           {"tradeoff " + tradeoff_tree() + " --study foliage -o " + dir + "/s.csv --plot " + dir +
+           {"tradeoff " + small_tree() + " --study foliage -o " + dir + "/s.txt", "--output"},
+           {"tradeoff " + small_tree() + " --study foliage -o " + dir + "/s.csv --plot " + dir +
                 "/s.jpg",
             "--plot"},
-           {"tradeoff " + tradeoff_tree() + out, "--study"},
+           {"tradeoff " + small_tree() + out, "--study"},
        }) {
     expect_input_error(c.args, c.needle);
   }
