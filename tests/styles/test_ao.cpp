@@ -15,27 +15,12 @@
 #include "styles/sheet.h"
 #include "styles/style.h"
 #include "tests/styles/ao_cpu.h"
+#include "tests/styles/style_rig.h"
 
 namespace sylva {
 namespace {
 
-struct AoRig {
-  Scene scene;
-  std::unique_ptr<GlContext> ctx = create_gl_context();
-  std::unique_ptr<Rasterizer> raster;
-  RasterSetup rs;
-  explicit AoRig(int size = 64) {
-    PlantOptions po;
-    po.kind = PlantKind::Bush;
-    po.leaves = 300;
-    scene = make_plant(po);
-    raster = std::make_unique<Rasterizer>(*ctx);
-    raster->upload(scene);
-    rs.rasterizer = raster.get();
-    rs.camera = make_orbit_camera(scene.bounds(), OrbitParams{}, size, size);
-    rs.lighting = Lighting::three_point();
-  }
-};
+using AoRig = test::StyleRig;
 
 // The AO target is finite, in [0, 1], 0 exactly where nothing was drawn.
 void expect_ao_range(const GBuffer& g) {

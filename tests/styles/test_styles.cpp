@@ -7,27 +7,12 @@
 #include "samples/plants.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
+#include "tests/styles/style_rig.h"
 
 namespace sylva {
 namespace {
 
-struct StyleRig {
-  Scene scene;
-  std::unique_ptr<GlContext> ctx = create_gl_context();
-  std::unique_ptr<Rasterizer> raster;
-  RasterSetup rs;
-  StyleRig() {
-    PlantOptions po;
-    po.kind = PlantKind::Bush;
-    po.leaves = 300;
-    scene = make_plant(po);
-    raster = std::make_unique<Rasterizer>(*ctx);
-    raster->upload(scene);
-    rs.rasterizer = raster.get();
-    rs.camera = make_orbit_camera(scene.bounds(), OrbitParams{}, 64, 64);
-    rs.lighting = Lighting::three_point();
-  }
-};
+using test::StyleRig;
 
 TEST(Styles, StandardNeverAllocatesTheIdTarget) {
   StyleRig s;
