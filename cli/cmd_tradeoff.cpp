@@ -2,9 +2,13 @@
 //   [--grids LIST] [--normal-sources LIST] [--encodings LIST] [--reference-grid N] [--quiet]
 //   [scene options] [--rho --tau --ka-min --d-min --exponent --blend --smooth --decimate
 //   --per-triangle]
+// sylva tradeoff SCENE --study ao ... (cli/tradeoff_ao.cpp)
+// sylva tradeoff SCENE --study keyframes ... (cli/tradeoff_keyframes.cpp)
 // Measures a speed/accuracy trade against a reference the program computes itself
-// (DESIGN.md §5): for now the Luft et al. foliage preprocessing (npr/foliage_study.h).
-#include <charconv>
+// (DESIGN.md §5): the Luft et al. foliage preprocessing (npr/foliage_study.h), the
+// ambient-occlusion models (npr/ao_study.h) or the keyframe interval of blob turntables
+// (styles/keyframe_study.h).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +19,7 @@
 #include "cli/common_options.h"
 #include "cli/frame.h"
 #include "cli/illumination_options.h"
+#include "cli/tradeoff.h"
 #include "core/error.h"
 #include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
@@ -23,12 +28,6 @@
 
 namespace sylva::cli {
 
-namespace {
-
-// The studies `--study` accepts; `ao` and `keyframes` are planned.
-const char* const kStudies = "foliage";
-
-// "a,b,c" → {"a", "b", "c"}; empty items are errors.
 std::vector<std::string> split_list(const std::string& text, const std::string& where) {
   std::vector<std::string> out;
   std::stringstream ss(text);
@@ -42,18 +41,15 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
   return out;
 }
 
-template <typename T>
-std::vector<T> parse_numbers(const std::string& text, const std::string& where) {
-  std::vector<T> out;
-  for (const std::string& item : split_list(text, where)) {
-    T v{};
-    const char* end = item.data() + item.size();
-    auto [p, ec] = std::from_chars(item.data(), end, v);
-    if (ec != std::errc() || p != end)
-      throw InputError(where, "'" + item + "' is not a number (in '" + text + "')");
-    out.push_back(v);
-  }
-  return out;
+namespace {
+
+// The studies `--study` accepts.
+const char* const kStudies = "foliage, ao, keyframes";
+
+// An option of one study given to another: one clear line instead of silently ignoring it.
+void reject_options(const std::vector<CLI::Option*>& options, const std::string& study) {
+  for (const CLI::Option* opt : options)
+    if (opt->count() > 0) throw InputError(opt->get_name(), "does not apply to --study " + study);
 }
 
 std::vector<NormalSource> parse_normal_sources(const std::string& text) {
@@ -131,6 +127,9 @@ Action add_tradeoff_command(CLI::App& app) {
     std::string style = "standard";
     std::vector<std::string> sets;
     bool quiet = false;
+    AoStudyCliOptions ao;
+    KeyframeStudyCliOptions keyframes;
+    std::vector<CLI::Option*> foliage_only;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand(
@@ -147,6 +146,7 @@ Action add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--study", o->study, std::string("What to study: ") + kStudies)->required();
   cmd->add_option("-o,--output", o->out, "Output table (.csv)")->required();
   cmd->add_option("--plot", o->plot, "Also draw error against time (.png)");
+  const size_t before = cmd->get_options().size();
   cmd->add_option("--fractions", o->fractions,
                   "Shares of leaves used as generators, comma-separated, each in (0, 1]")
       ->capture_default_str();
@@ -166,15 +166,40 @@ Action add_tradeoff_command(CLI::App& app) {
                   "the share of generators, matching the expected density) or fixed (the "
                   "reference's)")
       ->capture_default_str();
+  const std::vector<CLI::Option*> all = cmd->get_options();
+  o->foliage_only.assign(all.begin() + long(before), all.end());
+  add_ao_study_options(*cmd, o->ao);
+  add_keyframe_study_options(*cmd, o->keyframes);
   // The settings the sweep starts from: a style's foliage.* keys (after --set), then the
   // explicit options above.
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
   return [o, cmd] {
-    if (o->study != "foliage")
+    if (o->study != "foliage" && o->study != "ao" && o->study != "keyframes")
       throw InputError("--study", "unknown study '" + o->study + "' (allowed: " + kStudies + ")");
     check_output_path("--output", o->out, {".csv"});
     if (!o->plot.empty()) check_output_path("--plot", o->plot, {".png"});
+    if (o->study == "keyframes") {
+      reject_options(o->foliage_only, o->study);
+      for (CLI::Option* opt : o->ao.options)
+        if (std::find(o->ao.view_options.begin(), o->ao.view_options.end(), opt) ==
+            o->ao.view_options.end())
+          reject_options({opt}, o->study);
+      // A blobs style unless --style names another (which is then rejected).
+      if (cmd->get_option("--style")->count() == 0) o->style = "blobs";
+      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+      run_keyframe_study_command(o->scene, o->keyframes, o->ao.view, o->illumination, *style,
+                                 {o->out, o->plot, o->quiet});
+      return;
+    }
+    reject_options(o->keyframes.options, o->study);
+    if (o->study == "ao") {
+      reject_options(o->foliage_only, o->study);
+      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+      run_ao_study_command(o->scene, o->ao, o->illumination, *style, {o->out, o->plot, o->quiet});
+      return;
+    }
+    reject_options(o->ao.options, o->study);
 
     // Every option is checked before the scene is loaded. illumination_setup only keeps a
     // pointer to the scene, so an empty one serves for parsing.

@@ -1,5 +1,6 @@
 // sylva turntable SCENE --style S --frames N [--degrees 360] [--axis y] [--zoom Z] [--fps F]
-//   [--frame-range A:B] [--resume] [--report coherence.csv] -o OUT.mp4|DIR/
+//   [--keyframe-every n] [--keyframe-cache DIR] [--frame-range A:B] [--resume]
+//   [--report coherence.csv] -o OUT.mp4|DIR/
 #include <unistd.h>
 
 #include <chrono>
@@ -17,7 +18,9 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
 #include "core/progress.h"
+#include "npr/blob_keyframes.h"
 #include "styles/turntable.h"
+#include "styles/turntable_frames.h"
 
 namespace fs = std::filesystem;
 
@@ -67,6 +70,26 @@ class VideoOut {
   bool m_done = false;
 };
 
+// Everything a keyframe's blobs depend on, for --keyframe-cache: the scene, the frame-0 camera,
+// the image, the path, the interval and the blobs.* settings.
+std::string keyframe_signature(const Frame& frame, const Style& style, const TurntablePath& path,
+                               int every) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "sylva blob keyframes v1; source " << frame.scene.report.source << "; triangles "
+    << frame.scene.triangle_count() << "; clusters " << frame.scene.max_cluster_id() << "; size "
+    << frame.setup.camera.width << 'x' << frame.setup.camera.height << "; ssaa "
+    << frame.setup.request.ssaa << "; frames " << path.frames << "; degrees " << path.degrees
+    << "; axis " << path.axis << "; zoom " << path.zoom << "; every " << every << "; view";
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      s << ' ' << frame.setup.camera.view[c][r] << ' ' << frame.setup.camera.proj[c][r];
+  for (const ParamSpec& spec : style.set().specs())
+    if (spec.key.starts_with("blobs."))
+      s << "; " << spec.key << '=' << style.set().value_text(spec.key);
+  return s.str();
+}
+
 }  // namespace
 
 Action add_turntable_command(CLI::App& app) {
@@ -79,7 +102,8 @@ Action add_turntable_command(CLI::App& app) {
     TurntablePath path;
     std::string axis = "y";
     double fps = 30;
-    std::string range, report, out;
+    std::string range, report, out, keyframe_cache;
+    int keyframe_every = 1;
     bool resume = false, quiet = false;
   };
   auto o = std::make_shared<Opts>();
@@ -104,6 +128,13 @@ Action add_turntable_command(CLI::App& app) {
                   "Render frames A to B-1 only (A:B, 0-based; folder output), e.g. for a "
                   "render farm; the frames equal those of a full run");
   cmd->add_flag("--resume", o->resume, "Skip frames already in the output folder");
+  cmd->add_option("--keyframe-every", o->keyframe_every,
+                  "blobs style: shrink-wrap the blobs every n-th frame and interpolate the "
+                  "frames between (Dudley §5.1); >= 1, 1 = every frame")
+      ->capture_default_str();
+  cmd->add_option("--keyframe-cache", o->keyframe_cache,
+                  "blobs style: keep the keyframes' blobs in this folder and reuse them (e.g. "
+                  "across the jobs of a --frame-range split)");
   cmd->add_option("--report", o->report,
                   "Write per-frame time and flicker (mean |change| inside the plant, 8-bit "
                   "levels) to a .csv");
@@ -138,19 +169,17 @@ Action add_turntable_command(CLI::App& app) {
     }
     const FrameRange range = parse_frame_range(o->range, o->path.frames);
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+    (void)last_keyframe(o->path.frames, o->keyframe_every);  // validates --keyframe-every
+    const bool blobs = style->info().builder == "blobs";
+    if (!blobs && (o->keyframe_every != 1 || !o->keyframe_cache.empty()))
+      throw InputError(o->keyframe_every != 1 ? "--keyframe-every" : "--keyframe-cache",
+                       "keyframes are for the blobs style (style '" + style->info().name +
+                           "' draws every frame afresh)");
 
     auto frame = prepare_frame(o->scene, o->view);
     SheetScene scene = sheet_scene(*frame, o->illumination, o->scene.seed);
-    // The Luft preprocessing does not depend on the view: once per turntable.
-    auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
-    scene.foliage = [f = scene.foliage, memo, quiet = o->quiet](const FoliageSettings& s) {
-      IlluminationSetup setup = f(s);
-      setup.memo = memo;
-      if (quiet) setup.on_done = nullptr;
-      return setup;
-    };
+    memoize_foliage(scene, o->quiet);
     const Camera base = frame->setup.camera;
-    const glm::vec3 centre = frame->scene.framing_sphere().centre;
     if (to_dir) {
       std::error_code ec;
       fs::create_directories(o->out, ec);
@@ -159,10 +188,13 @@ Action add_turntable_command(CLI::App& app) {
     std::unique_ptr<VideoOut> video;
     if (!to_dir)
       video = std::make_unique<VideoOut>(o->out, o->fps, cv::Size(base.width, base.height));
+    TurntableRenderer renderer(
+        scene, *style, o->path, o->keyframe_every, o->keyframe_cache,
+        blobs ? keyframe_signature(*frame, *style, o->path, o->keyframe_every) : "");
 
     std::ostringstream csv;
-    csv << "frame,seconds,flicker\n";
-    cv::Mat previous, previous_mask;
+    csv << "frame,seconds,flicker" << (blobs ? ",jitter" : "") << "\n";
+    TurntableFrame previous;
     int written = 0, skipped = 0;
     ProgressOptions po;
     po.quiet = o->quiet;
@@ -175,29 +207,27 @@ Action add_turntable_command(CLI::App& app) {
         continue;
       }
       const auto t0 = std::chrono::steady_clock::now();
-      scene.raster.camera = turntable_camera(base, centre, o->path, i);
-      RenderGraph graph;
-      const SheetPlan plan = add_sheet_passes(graph, {style.get()}, scene);
-      if (!o->report.empty()) graph.present(plan.gbuffers[0].depth);  // the plant's mask
-      graph.compile();
-      graph.execute();
-      const cv::Mat& image = graph.get<cv::Mat>(plan.outputs[0]);
+      TurntableFrame now = renderer.render(i, !o->report.empty());
       if (to_dir) {
-        write_image(file, image);
+        write_image(file, now.image);
       } else {
         cv::Mat bgr;
-        cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+        cv::cvtColor(now.image, bgr, cv::COLOR_BGRA2BGR);
         video->write(bgr);
       }
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!o->report.empty()) {
-        const cv::Mat mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
         csv << i << ',' << seconds << ',';
-        if (!previous.empty()) csv << frame_flicker(previous, image, previous_mask, mask);
+        if (!previous.image.empty())
+          csv << frame_flicker(previous.image, now.image, previous.mask, now.mask);
+        if (now.blobs) {
+          csv << ',';
+          if (!previous.image.empty() && previous.blobs)
+            csv << blob_jitter(*previous.blobs, *now.blobs);
+        }
         csv << '\n';
-        previous = image.clone();
-        previous_mask = mask;
+        previous = std::move(now);
       }
       ++written;
       progress.step("frame " + std::to_string(i));

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "npr/generators.h"
+#include "npr/study_chart.h"
 
 namespace sylva {
 
@@ -249,13 +250,9 @@ std::string foliage_study_csv(const FoliageStudy& study) {
 }
 
 // ---------------------------------------------------------------------------------------
-// The chart, drawn with imgproc (Debian's OpenCV has no plot module linked here).
+// The chart (npr/study_chart.h).
 
 namespace {
-
-const cv::Scalar kBlack(0, 0, 0), kAxisGrey(90, 90, 90), kGridGrey(228, 228, 228),
-    kTextGrey(70, 70, 70);
-constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
 // Per normal source a light and a dark end (BGR); grids get shades from light (coarse) to
 // dark (fine). Blues and oranges stay apart for colour-blind readers.
@@ -267,173 +264,8 @@ cv::Scalar shade(NormalSource s, double t) {
   return light * (1.0 - t) + dark * t;
 }
 
-struct Painter {
-  cv::Mat& img;
-  double s;  // scale relative to 1200x800
-
-  int px(double v) const { return int(std::lround(v * s)); }
-  cv::Size text_size(const std::string& t, double size, int thick = 1) const {
-    int base = 0;
-    return cv::getTextSize(t, kFont, size * s, std::max(1, px(thick)), &base);
-  }
-  // Text anchored by `align` (0 left, 0.5 centre, 1 right) at the baseline y.
-  void text(const std::string& t, cv::Point p, double size, cv::Scalar c, double align = 0,
-            int thick = 1) const {
-    const cv::Size sz = text_size(t, size, thick);
-    cv::putText(img, t, {p.x - int(align * sz.width), p.y}, kFont, size * s, c,
-                std::max(1, px(thick)), cv::LINE_AA);
-  }
-  // Text turned 90 degrees counter-clockwise, centred on p.
-  void vertical_text(const std::string& t, cv::Point p, double size, cv::Scalar c) const {
-    const cv::Size sz = text_size(t, size);
-    cv::Mat strip(sz.height * 2, sz.width + 4, img.type(), cv::Scalar(255, 255, 255));
-    cv::putText(strip, t, {2, sz.height + sz.height / 2}, kFont, size * s, c, std::max(1, px(1)),
-                cv::LINE_AA);
-    cv::Mat turned;
-    cv::rotate(strip, turned, cv::ROTATE_90_COUNTERCLOCKWISE);
-    cv::Rect r(p.x - turned.cols / 2, p.y - turned.rows / 2, turned.cols, turned.rows);
-    r &= cv::Rect(0, 0, img.cols, img.rows);
-    turned(cv::Rect(0, 0, r.width, r.height)).copyTo(img(r));
-  }
-  void marker(NormalSource src, cv::Point p, cv::Scalar c, int r) const {
-    if (src == NormalSource::Surface) {
-      cv::circle(img, p, r, c, cv::FILLED, cv::LINE_AA);
-      cv::circle(img, p, r, cv::Scalar(255, 255, 255), std::max(1, px(1)), cv::LINE_AA);
-    } else {
-      const int h = int(std::lround(r * 1.25));
-      std::vector<cv::Point> tri = {
-          {p.x, p.y - h}, {p.x - h, p.y + h * 3 / 4}, {p.x + h, p.y + h * 3 / 4}};
-      cv::fillConvexPoly(img, tri, c, cv::LINE_AA);
-      cv::polylines(img, tri, true, cv::Scalar(255, 255, 255), std::max(1, px(1)), cv::LINE_AA);
-    }
-  }
-};
-
-std::string tick_label(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-// 1-2-5 ticks on a log axis inside [lo, hi]; every integer multiple when that gives fewer
-// than three.
-std::vector<double> log_ticks(double lo, double hi) {
-  for (const std::vector<int>& mult : {std::vector<int>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
-    std::vector<double> t;
-    for (int e = int(std::floor(std::log10(lo))); e <= int(std::ceil(std::log10(hi))); ++e)
-      for (int m : mult) {
-        const double v = m * std::pow(10.0, e);
-        if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) t.push_back(v);
-      }
-    if (t.size() >= 3 || mult.size() > 3) return t;
-  }
-  return {};
-}
-
-// A 1-2-5 step giving about `target` intervals over [0, hi].
-double nice_step(double hi, int target) {
-  const double raw = hi / target;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
-    if (m * mag >= raw) return m * mag;
-  return 10 * mag;
-}
-
-struct Point {
-  double seconds, value;
-  double fraction;
-  bool reference;
-};
-
-struct Series {
-  NormalSource normals;
-  int grid;
-  cv::Scalar colour;
-  std::vector<Point> points;
-};
-
-// One panel: axes, grid lines, ticks, labels, and the series.
-void draw_panel(const Painter& P, cv::Rect area, const std::string& title,
-                const std::string& y_label, double x_lo, double x_hi,
-                const std::vector<Series>& series, std::optional<double> lone_reference,
-                bool first_panel) {
-  double y_hi = 0;
-  for (const Series& s : series)
-    for (const Point& p : s.points)
-      y_hi = std::max(y_hi, p.value);
-  if (!(y_hi > 0)) y_hi = 1;
-  const double step = nice_step(y_hi * 1.03, 5);
-  y_hi = std::ceil(y_hi * 1.03 / step) * step;
-
-  const double lx0 = std::log10(x_lo), lx1 = std::log10(x_hi);
-  auto X = [&](double sec) {
-    return area.x + int(std::lround((std::log10(sec) - lx0) / (lx1 - lx0) * area.width));
-  };
-  auto Y = [&](double v) {
-    return area.y + area.height - int(std::lround(v / y_hi * area.height));
-  };
-
-  P.text(title, {area.x + area.width / 2, area.y - P.px(14)}, 0.6, kBlack, 0.5, 1);
-  for (double v = 0; v <= y_hi * (1 + 1e-9); v += step) {
-    const int y = Y(v);
-    cv::line(P.img, {area.x, y}, {area.x + area.width, y}, kGridGrey, 1, cv::LINE_AA);
-    cv::line(P.img, {area.x - P.px(5), y}, {area.x, y}, kAxisGrey, 1, cv::LINE_AA);
-    P.text(tick_label(std::abs(v) < step * 1e-6 ? 0.0 : v), {area.x - P.px(8), y + P.px(5)}, 0.45,
-           kTextGrey, 1.0);
-  }
-  for (double v : log_ticks(x_lo, x_hi)) {
-    const int x = X(v);
-    cv::line(P.img, {x, area.y}, {x, area.y + area.height}, kGridGrey, 1, cv::LINE_AA);
-    cv::line(P.img, {x, area.y + area.height}, {x, area.y + area.height + P.px(5)}, kAxisGrey, 1,
-             cv::LINE_AA);
-    P.text(tick_label(v), {x, area.y + area.height + P.px(22)}, 0.45, kTextGrey, 0.5);
-  }
-  cv::rectangle(P.img, area, kAxisGrey, 1, cv::LINE_AA);
-  P.text("preprocessing time, seconds (log scale)",
-         {area.x + area.width / 2, area.y + area.height + P.px(48)}, 0.5, kBlack, 0.5);
-  P.vertical_text(y_label, {area.x - P.px(first_panel ? 58 : 52), area.y + area.height / 2}, 0.5,
-                  kBlack);
-
-  // Lines first, markers over them, labels last so nothing hides them.
-  for (const Series& s : series)
-    for (size_t i = 1; i < s.points.size(); ++i)
-      cv::line(P.img, {X(s.points[i - 1].seconds), Y(s.points[i - 1].value)},
-               {X(s.points[i].seconds), Y(s.points[i].value)}, s.colour, P.px(2), cv::LINE_AA);
-  for (const Series& s : series)
-    for (const Point& p : s.points) {
-      if (p.reference)
-        cv::circle(P.img, {X(p.seconds), Y(p.value)}, P.px(11), kBlack, P.px(2), cv::LINE_AA);
-      P.marker(s.normals, {X(p.seconds), Y(p.value)}, s.colour, P.px(5));
-    }
-  // Fraction labels: the first of four spots around the point that overlaps no label drawn
-  // so far and stays inside the panel; none when all four do (points on top of each other).
-  std::vector<cv::Rect> taken;
-  for (const Series& s : series)
-    for (const Point& p : s.points) {
-      const std::string label = tick_label(p.fraction);
-      const cv::Size sz = P.text_size(label, 0.36);
-      const cv::Point c(X(p.seconds), Y(p.value));
-      const int d = P.px(7);
-      for (const cv::Point& at :
-           {cv::Point(c.x + d, c.y - d), cv::Point(c.x + d, c.y + d + sz.height),
-            cv::Point(c.x - d - sz.width, c.y - d),
-            cv::Point(c.x - d - sz.width, c.y + d + sz.height)}) {
-        const cv::Rect box(at.x - 1, at.y - sz.height - 1, sz.width + 2, sz.height + 3);
-        if ((box & area) != box || std::any_of(taken.begin(), taken.end(), [&](const cv::Rect& t) {
-              return (t & box).area() > 0;
-            }))
-          continue;
-        taken.push_back(box);
-        P.text(label, at, 0.36, s.colour * 0.8);
-        break;
-      }
-    }
-  if (lone_reference) {  // the reference's parameters are not in the sweep: show its time
-    const cv::Point p(X(*lone_reference), Y(0));
-    cv::circle(P.img, p, P.px(11), kBlack, P.px(2), cv::LINE_AA);
-    cv::circle(P.img, p, P.px(4), kBlack, cv::FILLED, cv::LINE_AA);
-    P.text("reference", {p.x, p.y - P.px(16)}, 0.42, kBlack, 0.5);
-  }
+ChartMarker marker_of(NormalSource s) {
+  return s == NormalSource::Surface ? ChartMarker::Circle : ChartMarker::Triangle;
 }
 
 }  // namespace
@@ -443,7 +275,7 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
   SYLVA_CHECK(width >= 600 && width <= 4000 && height >= 400 && height <= 4000,
               "plot size in [600, 4000] x [400, 4000]");
   cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  const Painter P{img, std::min(width / 1200.0, height / 800.0)};
+  const ChartPainter P{img, std::min(width / 1200.0, height / 800.0)};
 
   // One point per preprocessing run: the first encoding's row (time, normal and vertex ka
   // errors do not depend on the encoding).
@@ -455,14 +287,19 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
     if (std::find(sources.begin(), sources.end(), r.normals) == sources.end())
       sources.push_back(r.normals);
   }
-  std::vector<Series> normal_series, ka_series;
+  ChartPanel normal_panel, ka_panel;
+  normal_panel.title = "Foliage normals";
+  normal_panel.y_label = "mean angle to the reference normal, degrees";
+  ka_panel.title = "Ambient coefficient ka (per vertex)";
+  ka_panel.y_label = "RMSE of ka against the reference";
+  normal_panel.x_label = ka_panel.x_label = "preprocessing time, seconds (log scale)";
   double t_lo = 1e30, t_hi = 0;
   for (NormalSource src : sources) {
     size_t gi = 0;
     for (int grid : grids) {
       const double t = grids.size() > 1 ? double(gi++) / double(grids.size() - 1) : 1.0;
-      Series sn{src, grid, shade(src, t), {}};
-      Series sk = sn;
+      ChartSeries sn{shade(src, t), marker_of(src), {}};
+      ChartSeries sk = sn;
       std::set<double> seen;
       for (const FoliageStudyRow& r : study.rows) {
         if (r.normals != src || r.grid != grid || !seen.insert(r.fraction).second) continue;
@@ -473,42 +310,42 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
         const double sec = std::max(*r.seconds, 1e-4);
         t_lo = std::min(t_lo, sec);
         t_hi = std::max(t_hi, sec);
-        sn.points.push_back({sec, *r.normal_mean_deg, r.fraction, r.reference});
-        sk.points.push_back({sec, *r.ka_rmse, r.fraction, r.reference});
+        const std::string label = chart_tick_label(r.fraction);
+        sn.points.push_back({sec, *r.normal_mean_deg, label, r.reference});
+        sk.points.push_back({sec, *r.ka_rmse, label, r.reference});
       }
       if (!sn.points.empty()) {
-        normal_series.push_back(sn);
-        ka_series.push_back(sk);
+        normal_panel.series.push_back(sn);
+        ka_panel.series.push_back(sk);
       }
     }
   }
-  std::optional<double> lone_reference;
   if (std::none_of(study.rows.begin(), study.rows.end(),
                    [](const FoliageStudyRow& r) { return r.reference && r.seconds; })) {
-    lone_reference = std::max(study.reference_seconds, 1e-4);
-    t_lo = std::min(t_lo, *lone_reference);
-    t_hi = std::max(t_hi, *lone_reference);
+    // The reference's parameters are not in the sweep: show its time.
+    const double lone = std::max(study.reference_seconds, 1e-4);
+    normal_panel.lone_x = ka_panel.lone_x = lone;
+    t_lo = std::min(t_lo, lone);
+    t_hi = std::max(t_hi, lone);
   }
-  // Pad the time range by a tenth of its decades (at least a factor 1.25 each side).
-  const double pad = std::max(1.25, std::pow(t_hi / t_lo, 0.08));
-  const double x_lo = t_lo / pad, x_hi = t_hi * pad;
+  const auto [x_lo, x_hi] = chart_log_range(t_lo, t_hi);
 
   // Title and the reference's parameters.
   P.text("Foliage preprocessing: error against time  -  " + scene_name, {width / 2, P.px(34)}, 0.8,
-         kBlack, 0.5, 2);
+         kChartBlack, 0.5, 2);
   char sub[320];
   std::snprintf(sub, sizeof sub,
                 "reference: all %zu generators, grid %d, surface normals: %.2f s;  rho %.4g, "
                 "tau %.4g, d_min %.4g",
                 study.reference.generators, study.reference_grid, study.reference_seconds,
                 study.reference.rho, study.reference.tau, study.reference.d_min);
-  P.text(sub, {width / 2, P.px(62)}, 0.48, kTextGrey, 0.5);
+  P.text(sub, {width / 2, P.px(62)}, 0.48, kChartTextGrey, 0.5);
   std::string sub2 = study.scaled_thresholds
                          ? "every run: the reference's rho; its tau and d_min times the run's "
                            "share of generators"
                          : "every run: the reference's rho, tau and d_min";
   if (failed) sub2 += ";  failed runs are left out (see the CSV)";
-  P.text(sub2, {width / 2, P.px(84)}, 0.48, kTextGrey, 0.5);
+  P.text(sub2, {width / 2, P.px(84)}, 0.48, kChartTextGrey, 0.5);
 
   // Two panels side by side; the legend below them.
   const int top = P.px(130), legend_h = P.px(40 + 26 * std::max<size_t>(1, sources.size()));
@@ -517,10 +354,8 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
   const int panel_w = (width - left - gap - right) / 2;
   const cv::Rect a1(left, top, panel_w, bottom - top);
   const cv::Rect a2(left + panel_w + gap, top, panel_w, bottom - top);
-  draw_panel(P, a1, "Foliage normals", "mean angle to the reference normal, degrees", x_lo, x_hi,
-             normal_series, lone_reference, true);
-  draw_panel(P, a2, "Ambient coefficient ka (per vertex)", "RMSE of ka against the reference", x_lo,
-             x_hi, ka_series, lone_reference, false);
+  draw_chart_panel(P, a1, normal_panel, x_lo, x_hi, true);
+  draw_chart_panel(P, a2, ka_panel, x_lo, x_hi, false);
 
   // Legend: one row per normal source, one entry per grid.
   int y = height - legend_h + P.px(6);
@@ -528,25 +363,25 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
   const int x0 = std::max(P.px(20), (width - int(grids.size() + 1) * entry_w) / 2);
   for (NormalSource src : sources) {
     P.text(std::string(normal_source_name(src)) + " normals:", {x0 + entry_w - P.px(12), y}, 0.5,
-           kBlack, 1.0);
+           kChartBlack, 1.0);
     size_t gi = 0;
     for (int grid : grids) {
       const double t = grids.size() > 1 ? double(gi) / double(grids.size() - 1) : 1.0;
       const int x = x0 + int(gi + 1) * entry_w;
       const cv::Scalar c = shade(src, t);
       cv::line(img, {x, y - P.px(5)}, {x + P.px(36), y - P.px(5)}, c, P.px(2), cv::LINE_AA);
-      P.marker(src, {x + P.px(18), y - P.px(5)}, c, P.px(5));
-      P.text("grid " + std::to_string(grid), {x + P.px(44), y}, 0.48, kTextGrey);
+      P.marker(marker_of(src), {x + P.px(18), y - P.px(5)}, c, P.px(5));
+      P.text("grid " + std::to_string(grid), {x + P.px(44), y}, 0.48, kChartTextGrey);
       ++gi;
     }
     y += P.px(26);
   }
   const int ry = y + P.px(4);
-  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kBlack, P.px(2), cv::LINE_AA);
+  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
   P.text(
       "the reference (zero error by definition);  small numbers: the share of leaves used as "
       "generators (fraction)",
-      {x0 + P.px(36), ry}, 0.45, kTextGrey);
+      {x0 + P.px(36), ry}, 0.45, kChartTextGrey);
   return img;
 }
 

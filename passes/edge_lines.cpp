@@ -270,6 +270,8 @@ cv::Mat draw_edge_lines(const EdgeMarks& marks, const cv::Mat& depth, const cv::
   const cv::Mat row_of = nearest_mark_rows(lattice, size.height);
 
   const float base = float(p.width * reference_scale(size));
+  const float min_width = std::max(0.0f, p.min_width);
+  const float widest = std::max(base, min_width);
   const bool by_depth = (p.depth_width > 1.0f || p.fade > 0.0f) && !depth.empty();
   double z_min = 0.0, z_max = 0.0;
   if (by_depth) {
@@ -282,7 +284,7 @@ cv::Mat draw_edge_lines(const EdgeMarks& marks, const cv::Mat& depth, const cv::
   }
   const double range = z_max - z_min;
   // Segments to the marks around the nearest one reach at most this much closer.
-  const float reach = 0.5f * base + 0.5f + float(std::numbers::sqrt2 / 2.0);
+  const float reach = 0.5f * widest + 0.5f + float(std::numbers::sqrt2 / 2.0);
   for_bands(size.height, [&](int y0, int y1) {
     RowEnvelope envelope(lattice.width(), reach);
     BoundaryDistance boundary_distance(lattice);
@@ -298,13 +300,14 @@ cv::Mat draw_edge_lines(const EdgeMarks& marks, const cv::Mat& depth, const cv::
         const cv::Vec2i nr = nearest[size_t(x)];
         const float dl = boundary_distance(2 * x, 2 * y, nr[0], nr[1]);
         if (!by_depth) {
-          l[x] = line_coverage(base, dl);
+          l[x] = line_coverage(widest, dl);
           continue;
         }
         const float z = mark_depth_at(depth, nr[0], nr[1]);
         const double t =
             (z > 0.0f && range > 0.0) ? std::clamp((z - z_min) / range, 0.0, 1.0) : 0.0;
-        const float width = base * float(1.0 + (1.0 / p.depth_width - 1.0) * t);
+        const float width =
+            std::max(min_width, base * float(1.0 + (1.0 / p.depth_width - 1.0) * t));
         l[x] = line_coverage(width, dl) * float(1.0 - p.fade * t);
       }
     }

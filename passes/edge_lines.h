@@ -19,7 +19,7 @@
 
 namespace sylva {
 
-// Uses p.width (x reference_scale), p.depth_width and p.fade.
+// Uses p.width (x reference_scale, no thinner than p.min_width px), p.depth_width and p.fade.
 cv::Mat draw_edge_lines(const EdgeMarks& marks, const cv::Mat& depth, const cv::Mat& foreground,
                         const EdgeParams& p);
 

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 #include "core/error.h"
@@ -229,6 +230,39 @@ void drop_specks(EdgeMarks& marks) {
   });
 }
 
+// Groups of marks on 8-neighbouring pixels (a mark lies on its pixel, or on the left or upper
+// pixel of the pair it lies between) whose pixels' bounding box has a diagonal under
+// `min_px` are dropped: at small sizes leaf-level discontinuities give isolated specks and
+// dashes that read as dirt, not lines. One connected-component labelling of those pixels; its
+// groups and their boxes do not depend on how OpenCV splits the work, so neither do the bytes.
+// A mark kept at a higher threshold has at least as large a group at a lower one, so counts
+// still fall as thresholds rise.
+void drop_short_lines(EdgeMarks& marks, double min_px) {
+  const int w = marks.at.cols, h = marks.at.rows;
+  if (!(min_px > 0.0) || w == 0 || h == 0) return;
+  cv::Mat cells = marks.at.clone();
+  if (w > 1) {
+    cv::Mat left = cells(cv::Rect(0, 0, w - 1, h));
+    cv::bitwise_or(left, marks.between_x, left);
+  }
+  if (h > 1) {
+    cv::Mat upper = cells(cv::Rect(0, 0, w, h - 1));
+    cv::bitwise_or(upper, marks.between_y, upper);
+  }
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(cells, labels, stats, centroids, 8, CV_32S);
+  std::vector<uint8_t> keep(size_t(n), 1);
+  bool any_short = false;
+  for (int k = 1; k < n; ++k) {
+    const double extent =
+        std::hypot(stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    keep[size_t(k)] = extent >= min_px;
+    any_short = any_short || !keep[size_t(k)];
+  }
+  if (!any_short) return;
+  clear_all_marks(marks, [&](int i, int j) { return !keep[size_t(labels.at<int>(j / 2, i / 2))]; });
+}
+
 EdgeMarks empty_marks(const cv::Size& size) {
   EdgeMarks marks;
   marks.at = cv::Mat::zeros(size, CV_8UC1);
@@ -289,6 +323,7 @@ EdgeMarks find_edge_marks(const EdgeImages& in, const EdgeParams& p, cv::Mat& fg
     marks.shift_y = outline.shift_y;
     or_marks(marks, outline);
   }
+  drop_short_lines(marks, p.min_length * reference_scale(size));
   return marks;
 }
 

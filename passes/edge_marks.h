@@ -3,7 +3,8 @@
 // alpha puts the boundary), depth jumps (Saito & Takahashi), creases (passes/edge_creases.h),
 // normal discontinuities (Decaudin), id boundaries; then the two clean-ups: marks of other kinds
 // next to the silhouette are dropped (the outline wins), and so are specks (groups of fewer
-// than three marks).
+// than three marks); then, with EdgeParams::min_length, every connected group of marks of any
+// kind shorter than that.
 //
 // Reads the EdgeImages the enabled kinds need (see passes/edges.h for types and which kind
 // reads what); writes an EdgeMarks at the input size and the covered pixels. Rows are marked

@@ -32,6 +32,10 @@ void bind_edge_params(ParamSet& set, EdgeParams& p) {
   set.add_bool("edges.id", p.id, "lines where the id (primitive, cluster, object) changes");
   set.add_color("edges.color", p.color, "line colour");
   set.add_float("edges.width", p.width, 0.25, 16.0, "px at 1024 px", "line width");
+  set.add_float("edges.min_width", p.min_width, 0.0, 4.0, "px",
+                "thinnest line in output pixels, whatever the resolution (0 = no floor)");
+  set.add_float("edges.min_length", p.min_length, 0.0, 256.0, "px at 1024 px",
+                "lines (connected marks) shorter than this are dropped (0 = keep all)");
   set.add_float("edges.depth_width", p.depth_width, 1.0, 8.0, "ratio",
                 "nearest lines are this many times thicker than the farthest (1 = even)");
   set.add_float("edges.fade", p.fade, 0.0, 1.0, "",

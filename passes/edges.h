@@ -23,7 +23,9 @@
 // (tests/passes/test_edges.cpp). Two clean-ups keep lines single: a mark of another kind
 // within 1.5 px (a crease: 2.5 px) of the silhouette is dropped (a surface seen edge-on turns
 // its normal and depth fastest right at its outline, which would draw a second, ragged line
-// beside it), and so are groups of fewer than three marks (specks, not lines).
+// beside it), and so are groups of fewer than three marks (specks, not lines); with
+// min_length, also every connected group, outline included, shorter than that. At small sizes
+// lines are widened to min_width px, so that none is thinner than a pixel's worth of ink.
 //
 // Parts: marking in passes/edge_marks.h (creases in passes/edge_creases.h), widening into
 // lines in passes/edge_lines.h, both on the lattice of passes/edge_lattice.h. They run row
@@ -88,6 +90,20 @@ struct EdgeParams {
   // edges.width: line width in px at the 1024 px reference (x reference_scale at other
   // sizes). Range [0.25, 16]; default 1.5.
   float width = 1.5f;
+
+  // edges.min_width: the thinnest a line is drawn, in px of the output image (not scaled with
+  // the resolution): width x reference_scale, and the farthest lines of depth_width, are
+  // widened to it. A line narrower than a pixel covers no pixel fully and, blended in linear
+  // light, comes out a light grey instead of ink. 0 = no floor. Range [0, 4], unit px;
+  // default 1.
+  float min_width = 1.0f;
+
+  // edges.min_length: connected groups of marks of any kind (marks on 8-neighbouring pixels;
+  // a mark between two pixels counts on the left or upper one) whose extent, the diagonal of
+  // the bounding box of their pixels, is shorter than this are dropped: the specks and dashes
+  // leaf-level discontinuities leave inside a crown, not lines. Scaled like width (x
+  // reference_scale). 0 = keep all. Range [0, 256], unit px at 1024 px; default 0.
+  float min_length = 0.0f;
 
   // edges.depth_width: how many times thicker the nearest lines are than the farthest ones
   // (nearest = width, farthest = width / depth_width, linear in depth over the frame's

@@ -125,11 +125,7 @@ struct DriveLight {
 DriveLight to_view(const Light& l, const glm::mat4& view) {
   DriveLight d;
   d.point = l.type == Light::Type::Point;
-  if (d.point) {
-    d.v = l.camera_fixed ? l.vector : glm::vec3(view * glm::vec4(l.vector, 1.0f));
-  } else {
-    d.v = glm::normalize(l.camera_fixed ? l.vector : glm::mat3(view) * l.vector);
-  }
+  d.v = light_in_view(l, view);
   return d;
 }
 

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Renders the demo gallery: the sample tree, bush and conifer and the shared fern in the
-# standard, expressive (Luft et al.), ink, toon and watercolor styles, a contact sheet of
+# standard, expressive (Luft et al.), ink, toon, watercolor and blobs (Dudley) styles, a contact sheet of
 # every style per scene, their G-buffer previews, the normal buffers of Luft Fig. 7 (original,
 # realigned, realigned-scaled), a rho/tau sweep (Luft Fig. 3), toon with cast shadows, toon
-# turntables (MP4), a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
+# and keyframed blob turntables (MP4), a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
 set -euo pipefail
 sylva=$1
 out=$2
@@ -16,7 +16,7 @@ scenes=("$out/tree.glb" "$out/bush.glb" "$out/conifer.glb" "$shared/assets/polyh
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .glb)
   "$sylva" render "$scene" --style standard --size 1024 --ssaa 2 -o "$out/$name-standard.png"
-  for style in expressive ink toon watercolor; do
+  for style in expressive ink toon watercolor blobs; do
     "$sylva" render "$scene" --style "$style" --size 1024 --ssaa 2 --cache-dir "$out/cache" \
       -o "$out/$name-$style.png"
   done
@@ -37,6 +37,14 @@ for kind in tree conifer; do
   "$sylva" turntable "$out/$kind.glb" --style toon --frames 72 --size 512 --ssaa 2 \
     --cache-dir "$out/cache" -q --report "$out/$kind-turntable-coherence.csv" \
     -o "$out/$kind-turntable-toon.mp4"
+done
+# Dudley's blobs: 16 clusters, keyframes every 8 frames (the coherence CSV has the jitter).
+for kind in tree bush conifer; do
+  "$sylva" render "$out/$kind.glb" --style blobs --clusters 16 --size 1024 --ssaa 2 \
+    -o "$out/$kind-blobs-16.png"
+  "$sylva" turntable "$out/$kind.glb" --style blobs --clusters 16 --frames 96 --size 512 \
+    --keyframe-every 8 -q --report "$out/$kind-turntable-blobs-coherence.csv" \
+    -o "$out/$kind-turntable-blobs.mp4"
 done
 "$sylva" bake "$out/tree.glb" --cache-dir "$out/cache" -o "$out/tree-baked.glb"
 "$sylva" render "$out/tree-baked.glb" --size 1024 --ssaa 2 -o "$out/tree-baked-standard.png"

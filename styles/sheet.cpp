@@ -190,10 +190,13 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     StyleContext context;
     context.lighting = setup.lighting;
     context.view = setup.camera.view;
-    context.background = requests[rkey].background;
+    context.background = scene.raster.request.background;  // the view's, not the raster's
     context.foliage_diagonal = scene.foliage_diagonal;
     context.rasterizer = setup.rasterizer;
+    context.camera = setup.camera;
     context.scene_sphere = scene.scene_sphere;
+    context.branch_cluster = scene.branch_cluster;
+    context.blobs = scene.blobs;
     auto s = scope("cell-" + std::to_string(i));
     const int out = style.build(graph, rasters[rkey], context);
     graph.present(out);

@@ -45,9 +45,11 @@ std::vector<std::string> changed_parameters(const Style& style,
 
 // What every cell shares: the uploaded scene and view.
 struct SheetScene {
-  RasterSetup raster;          // rasteriser, camera, lighting; request = the view's base request
-  float foliage_diagonal = 0;  // scene units (StyleContext::foliage_diagonal)
-  Sphere scene_sphere;         // StyleContext::scene_sphere
+  RasterSetup raster;           // rasteriser, camera, lighting; request = the view's base request
+  float foliage_diagonal = 0;   // scene units (StyleContext::foliage_diagonal)
+  Sphere scene_sphere;          // StyleContext::scene_sphere
+  uint32_t branch_cluster = 0;  // StyleContext::branch_cluster
+  std::shared_ptr<const BlobSet> blobs;  // StyleContext::blobs
   // The Luft preprocessing for one style's foliage settings (parsed against the scene).
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;
   // For styles with ao.model other than none: the scene the AO shells are fitted to (outlives

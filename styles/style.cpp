@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 #include "passes/background.h"
+#include "passes/blobs.h"
+#include "styles/blob_raster.h"
 
 namespace sylva {
 
@@ -93,6 +95,53 @@ int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const St
   return add_watercolor_pass(graph, r, glm::inverse(context.view), p);
 }
 
+int build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                const StyleContext& context) {
+  const BlobParams& p = params.blobs;
+  validate_blob_params(p);
+  int outlines = -1;
+  if (context.blobs) {
+    outlines = graph.resource("blob-outlines");
+    graph.add_pass(
+        "blob-keyframes", {}, {outlines},
+        [outlines, set = context.blobs](PassContext& ctx) { ctx.write(outlines, *set); });
+  } else if (p.outlines == "alone") {
+    SYLVA_CHECK(context.rasterizer != nullptr, "blobs.outlines = alone: no rasteriser");
+    outlines = graph.resource("blob-outlines");
+    graph.add_pass("blob-outlines", {gbuffer.id}, {outlines},
+                   [outlines, id = gbuffer.id, p, context](PassContext& ctx) {
+                     ctx.write(outlines, still_blob_set(rasterised_blob_outlines(
+                                             *context.rasterizer, context.camera, context.lighting,
+                                             RasterRequest{}, p, context.branch_cluster,
+                                             ctx.read<cv::Mat>(id))));
+                   });
+  } else {
+    outlines = add_blob_outlines_pass(graph, gbuffer.id, gbuffer.depth, context.branch_cluster, p);
+  }
+  BlobResources r;
+  r.color = gbuffer.color;
+  r.albedo = gbuffer.albedo;
+  r.id = gbuffer.id;
+  r.depth = gbuffer.depth;
+  r.position = gbuffer.position;
+  if (p.silhouettes) {
+    // Leaf silhouettes from depth and normal jumps; the id buffer holds clusters, not leaves.
+    EdgeParams e = params.edges;
+    e.id = false;
+    EdgeResources er;
+    er.normal = gbuffer.normal;
+    er.depth = gbuffer.depth;
+    er.color = gbuffer.color;
+    r.lines = add_edges_pass(graph, er, e);
+  }
+  BlobFrame frame;
+  frame.lighting = context.lighting;
+  frame.view = context.view;
+  frame.background = context.background;
+  frame.branch_cluster = context.branch_cluster;
+  return add_blobs_pass(graph, outlines, r, frame, p);
+}
+
 const std::vector<StyleBuilder>& builder_table() {
   static const std::vector<StyleBuilder> table = {
       {"shaded", "local illumination (Luft et al. Eq. 1) from the raster pass", &build_shaded},
@@ -100,6 +149,8 @@ const std::vector<StyleBuilder>& builder_table() {
       {"toon", "cartoon shading in k bands of N.L (Decaudin)", &build_toon},
       {"watercolor", "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
        &build_watercolor, IdKind::Cluster},
+      {"blobs", "shrink-wrapped blob billboards per leaf cluster over the branches (Dudley)",
+       &build_blobs, IdKind::Cluster},
   };
   return table;
 }
@@ -127,7 +178,9 @@ NormalMode Style::normals() const {
 void Style::configure(RasterRequest& request) const {
   request.flat_albedo = m_params.albedo == "flat";
   request.id_kind = find_builder(m_info.builder, m_info.source).ids;
-  if (m_info.builder == "ink") request.background.a = 0.0f;  // colour alpha = coverage
+  // ink and blobs read the colour's alpha as coverage (the sheet keeps the view's background
+  // for the style context).
+  if (m_info.builder == "ink" || m_info.builder == "blobs") request.background.a = 0.0f;
 }
 
 int Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,

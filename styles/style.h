@@ -29,6 +29,13 @@ struct StyleContext {
   // scene and a sphere around it. May be null/empty when no such style is built.
   Rasterizer* rasterizer = nullptr;
   Sphere scene_sphere;
+  Camera camera;  // the frame's camera (blobs.outlines = alone renders it once per cluster)
+  // The cluster id of trunk and branches (Scene::branch_cluster_id), 0 = none: the blobs
+  // style paints them as its base layer rather than as a blob.
+  uint32_t branch_cluster = 0;
+  // The frame's blobs when an animation interpolates them between keyframes
+  // (npr/blob_keyframes.h); null = shrink-wrap this frame's own clusters.
+  std::shared_ptr<const BlobSet> blobs;
 };
 
 struct StyleBuilder {
@@ -63,6 +70,11 @@ int build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StylePara
 // passes/watercolor.h; the id buffer holds cluster ids.
 int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                      const StyleContext& context);
+
+// blobs: Dudley's shrink-wrapped blob billboards (passes/blobs.h), one per leaf cluster, over
+// the trunk and branches; the id buffer holds cluster ids.
+int build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                const StyleContext& context);
 
 // A preset resolved into parameters. Not copyable: `set` refers into `params`.
 class Style {

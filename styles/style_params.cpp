@@ -13,6 +13,7 @@ void bind_style_params(ParamSet& set, StyleParams& p) {
   bind_ink_params(set, p.ink);
   bind_toon_params(set, p.toon);
   bind_watercolor_params(set, p.watercolor);
+  bind_blob_params(set, p.blobs);
 }
 
 }  // namespace sylva

@@ -9,6 +9,7 @@
 #include "core/params.h"
 #include "npr/ao_pass.h"
 #include "npr/illumination_pass.h"
+#include "passes/blobs.h"
 #include "passes/composite.h"
 #include "passes/edges.h"
 #include "passes/toon.h"
@@ -28,6 +29,7 @@ struct StyleParams {
   InkParams ink;
   ToonParams toon;
   WatercolorParams watercolor;
+  BlobParams blobs;
 };
 
 // `set` refers into `params`: keep both alive together.

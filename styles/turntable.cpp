@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "styles/blob_raster.h"
 
 namespace sylva {
 
@@ -22,7 +23,7 @@ void validate_turntable(const TurntablePath& path) {
 
 Camera turntable_camera(const Camera& base, const glm::vec3& centre, const TurntablePath& path,
                         int frame) {
-  SYLVA_CHECK(frame >= 0 && frame < path.frames, "turntable_camera: frame out of range");
+  SYLVA_CHECK(frame >= 0, "turntable_camera: negative frame");
   const glm::vec3 axis = path.axis == 'x'   ? glm::vec3(1, 0, 0)
                          : path.axis == 'z' ? glm::vec3(0, 0, 1)
                                             : glm::vec3(0, 1, 0);
@@ -78,6 +79,28 @@ double frame_flicker(const cv::Mat& previous, const cv::Mat& current, const cv::
   cv::absdiff(previous, current, diff);
   const cv::Scalar sum = cv::sum(diff.setTo(cv::Scalar::all(0), mask == 0));
   return (sum[0] + sum[1] + sum[2]) / (3.0 * n);
+}
+
+std::vector<BlobOutline> turntable_blob_outlines(const RasterSetup& base, const glm::vec3& centre,
+                                                 const TurntablePath& path, int frame,
+                                                 const BlobParams& p, uint32_t branch_cluster) {
+  SYLVA_CHECK(base.rasterizer != nullptr, "turntable_blob_outlines: no rasteriser");
+  return rasterised_blob_outlines(*base.rasterizer,
+                                  turntable_camera(base.camera, centre, path, frame), base.lighting,
+                                  base.request, p, branch_cluster);
+}
+
+double blob_jitter(const BlobSet& previous, const BlobSet& current) {
+  double sum = 0;
+  size_t count = 0;
+  for (const BlobOutline& b : current.blobs)
+    for (const BlobOutline& a : previous.blobs) {
+      if (a.cluster != b.cluster || a.wrap.points.size() != b.wrap.points.size()) continue;
+      for (size_t i = 0; i < a.wrap.points.size(); ++i)
+        sum += glm::length(b.wrap.points[i] - a.wrap.points[i]);
+      count += a.wrap.points.size();
+    }
+  return count == 0 ? 0.0 : sum / static_cast<double>(count);
 }
 
 }  // namespace sylva

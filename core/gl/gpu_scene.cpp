@@ -1,8 +1,14 @@
 #include "core/gl/gpu_scene.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <opencv2/imgproc.hpp>
 #include <string>
+#include <vector>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/gl/shaders.h"
 
@@ -19,6 +25,54 @@ GLuint make_buffer(GLenum target, const std::vector<T>& data) {
   glBindBuffer(target, buffer);
   glBufferStorage(target, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), 0);
   return buffer;
+}
+
+// The mip chain of an sRGB RGBA texture, as glGenerateMipmap makes it for GL_SRGB8_ALPHA8
+// (colour averaged in linear light, alpha as is, each level a box filter of the one above,
+// floor(size / 2) per side). Made here because llvmpipe compiles a blit shader the first time
+// glGenerateMipmap runs, a tenth of a second of every command that draws a textured scene.
+// Returns levels 1 to levels - 1, 8-bit RGBA.
+std::vector<cv::Mat> srgb_mip_chain(const Texture& tex, int levels) {
+  static const std::array<float, 256> decode = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i)
+      t[size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+    return t;
+  }();
+  constexpr int kEncodeSteps = 65535;  // exact to the 8-bit level even in the darks
+  static const std::vector<uint8_t> encode = [] {
+    std::vector<uint8_t> t(kEncodeSteps + 1);
+    for (int i = 0; i <= kEncodeSteps; ++i)
+      t[size_t(i)] = uint8_t(std::lround(linear_to_srgb(float(i) / kEncodeSteps) * 255.0f));
+    return t;
+  }();
+  const cv::Mat rgba(tex.height, tex.width, CV_8UC4, const_cast<uint8_t*>(tex.rgba.data()));
+  cv::Mat linear(rgba.size(), CV_32FC4);
+  for (int y = 0; y < rgba.rows; ++y) {
+    const cv::Vec4b* in = rgba.ptr<cv::Vec4b>(y);
+    cv::Vec4f* out = linear.ptr<cv::Vec4f>(y);
+    for (int x = 0; x < rgba.cols; ++x)
+      out[x] = {decode[in[x][0]], decode[in[x][1]], decode[in[x][2]], in[x][3] / 255.0f};
+  }
+  std::vector<cv::Mat> chain;
+  for (int level = 1; level < levels; ++level) {
+    const cv::Size size(std::max(1, linear.cols / 2), std::max(1, linear.rows / 2));
+    cv::Mat smaller;
+    cv::resize(linear, smaller, size, 0, 0, cv::INTER_AREA);
+    cv::Mat bytes(size, CV_8UC4);
+    for (int y = 0; y < size.height; ++y) {
+      const cv::Vec4f* in = smaller.ptr<cv::Vec4f>(y);
+      cv::Vec4b* out = bytes.ptr<cv::Vec4b>(y);
+      for (int x = 0; x < size.width; ++x) {
+        for (int c = 0; c < 3; ++c)
+          out[x][c] = encode[size_t(std::clamp(in[x][c], 0.0f, 1.0f) * kEncodeSteps + 0.5f)];
+        out[x][3] = uint8_t(std::clamp(in[x][3], 0.0f, 1.0f) * 255.0f + 0.5f);
+      }
+    }
+    chain.push_back(bytes);
+    linear = smaller;
+  }
+  return chain;
 }
 
 void check_array(size_t size, size_t expected, const Mesh& mesh, const char* what) {
@@ -141,7 +195,10 @@ GLuint upload_texture(const Texture& tex) {
   // Rows go in top first: GL's t = 0 is then the image top, which is glTF's v = 0.
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, tex.width, tex.height, GL_RGBA, GL_UNSIGNED_BYTE,
                   tex.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);
+  const std::vector<cv::Mat> chain = srgb_mip_chain(tex, levels);
+  for (size_t i = 0; i < chain.size(); ++i)
+    glTexSubImage2D(GL_TEXTURE_2D, GLint(i + 1), 0, 0, chain[i].cols, chain[i].rows, GL_RGBA,
+                    GL_UNSIGNED_BYTE, chain[i].data);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);

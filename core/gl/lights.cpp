@@ -58,4 +58,10 @@ void validate_lighting(const Lighting& lighting) {
   }
 }
 
+glm::vec3 light_in_view(const Light& light, const glm::mat4& view) {
+  if (light.type == Light::Type::Point)
+    return light.camera_fixed ? light.vector : glm::vec3(view * glm::vec4(light.vector, 1.0f));
+  return glm::normalize(light.camera_fixed ? light.vector : glm::mat3(view) * light.vector);
+}
+
 }  // namespace sylva

@@ -36,4 +36,8 @@ struct Lighting {
 // or a zero-length directional vector.
 void validate_lighting(const Lighting& lighting);
 
+// The light's vector in view space (`view` = world -> view): a directional light's unit
+// direction toward the light, or a point light's position.
+glm::vec3 light_in_view(const Light& light, const glm::mat4& view);
+
 }  // namespace sylva

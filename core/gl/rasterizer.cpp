@@ -200,6 +200,7 @@ struct Rasterizer::Impl {
     glUniformMatrix4fv(p.view, 1, GL_FALSE, &camera.view[0][0]);
     glUniformMatrix4fv(p.proj, 1, GL_FALSE, &camera.proj[0][0]);
     glUniform1i(p.id_kind, id_kind == IdKind::Primitive ? 0 : id_kind == IdKind::Cluster ? 1 : 2);
+    glUniform1ui(p.only_cluster, request.only_cluster);
     glUniform1i(p.ortho, camera.ortho ? 1 : 0);
     glUniform1i(p.texture, 0);
     glUniform1f(p.ambient, lighting.ambient);

@@ -28,6 +28,7 @@ struct RasterRequest {
   bool scaled_normals = false;       // normal target keeps |N| = ka (Luft Fig. 7c), not unit
   bool flat_albedo = false;          // albedo target: each texture's mean colour (flat toon tones)
   AoShading ao;                      // the AO target and the colour's ambient visibility
+  uint32_t only_cluster = 0;         // > 0: draw only the triangles of this cluster id
 };
 
 // Replacement per-vertex shading inputs, per scene mesh (scene order): normals (world

@@ -21,6 +21,7 @@ uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object
 uniform uint u_object_id;   // mesh index + 1
+uniform uint u_only_cluster;  // 0 = draw everything, else only this cluster's triangles
 
 out vec3 v_view_pos;
 out vec3 v_world_pos;
@@ -46,6 +47,9 @@ void main() {
   v_id = u_id_kind == 0 ? a_ids.x : (u_id_kind == 1 ? a_ids.y : u_object_id);
   v_role = a_role;
   gl_Position = u_proj * view_pos;
+  // Every vertex of a triangle carries its cluster, so moving them all outside the clip
+  // volume drops the triangle before rasterisation.
+  if (u_only_cluster != 0u && a_ids.y != u_only_cluster) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
 )GLSL";
 
@@ -330,6 +334,7 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.view = loc("u_view");
   p.proj = loc("u_proj");
   p.id_kind = loc("u_id_kind");
+  p.only_cluster = loc("u_only_cluster");
   p.object_id = loc("u_object_id");
   p.base_color = loc("u_base_color");
   p.has_texture = loc("u_has_texture");

@@ -38,10 +38,11 @@ GLuint build_raster_program(TargetMask targets, bool alpha_test);
 // A raster program variant and its uniform locations (-1 when optimised away).
 struct RasterProgram {
   GLuint id = 0;
-  GLint view, proj, id_kind, object_id, base_color, has_texture, texture, alpha_cutoff,
-      double_sided, has_normals, ortho, ambient, light_count, light_vector, light_color, light_spec,
-      scaled_normals, oriented_foliage, flat_albedo, texture_mean, ao_model, ao_constant,
-      ao_alpha_rho, ao_shell_count, ao_centre, ao_anchor, ao_inverse, ao_transpose, ao_volume_scale;
+  GLint view, proj, id_kind, only_cluster, object_id, base_color, has_texture, texture,
+      alpha_cutoff, double_sided, has_normals, ortho, ambient, light_count, light_vector,
+      light_color, light_spec, scaled_normals, oriented_foliage, flat_albedo, texture_mean,
+      ao_model, ao_constant, ao_alpha_rho, ao_shell_count, ao_centre, ao_anchor, ao_inverse,
+      ao_transpose, ao_volume_scale;
 };
 RasterProgram make_raster_program(TargetMask targets, bool alpha_test);
 

@@ -9,6 +9,8 @@ namespace sylva {
 
 // Throws InputError(path, ...) for an unsupported extension or a failed write. Non-finite
 // values in float images are a programming error (SYLVA_CHECK): nothing NaN reaches a file.
+// PNGs (1-4 channels, BGR(A) order) are written by libpng, fast rather than small (zlib level
+// 3, no row filters); the other formats by OpenCV.
 void write_image(const std::string& path, const cv::Mat& image);
 
 // Reads an image unchanged (cv::IMREAD_UNCHANGED). Throws InputError when unreadable.

@@ -96,4 +96,11 @@ uint32_t Scene::max_cluster_id() const {
   return n;
 }
 
+uint32_t Scene::branch_cluster_id() const {
+  for (const Mesh& m : meshes)
+    for (size_t t = 0; t < m.roles.size() && t < m.cluster_ids.size(); ++t)
+      if (m.roles[t] != Role::Foliage) return m.cluster_ids[t];
+  return 0;
+}
+
 }  // namespace sylva

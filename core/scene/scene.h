@@ -116,6 +116,8 @@ struct Scene {
   size_t vertex_count() const;
   uint32_t max_primitive_id() const;
   uint32_t max_cluster_id() const;
+  // The cluster id all non-foliage triangles share (trunk and branches), 0 when there are none.
+  uint32_t branch_cluster_id() const;
 };
 
 }  // namespace sylva

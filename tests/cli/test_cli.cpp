@@ -147,7 +147,7 @@ TEST(Cli, FoliageIlluminationOptions) {
 TEST(Cli, StylesPresetsAndSet) {
   RunResult list = run_sylva("styles");
   ASSERT_EQ(list.status, 0) << list.output;
-  for (const char* s : {"standard", "expressive", "ink", "toon", "watercolor"})
+  for (const char* s : {"standard", "expressive", "ink", "toon", "watercolor", "blobs"})
     EXPECT_NE(list.output.find(s), std::string::npos) << s;
   RunResult ink = run_sylva("styles ink");
   ASSERT_EQ(ink.status, 0) << ink.output;
@@ -163,6 +163,10 @@ TEST(Cli, StylesPresetsAndSet) {
   expect_input_error(base + "--style " + dir + "/syntax.toml", "line 1");
   expect_input_error(base + "--style ink --set edges.width=0", "edges.width");
   expect_input_error(base + "--style ink --set edges.widht=2", "unknown key");
+  expect_input_error(base + "--style ink --set edges.min_width=4.1", "edges.min_width");
+  expect_input_error(base + "--style ink --set edges.min_width=-0.1", "edges.min_width");
+  expect_input_error(base + "--style ink --set edges.min_length=-1", "edges.min_length");
+  expect_input_error(base + "--style ink --set edges.min_length=257", "edges.min_length");
   expect_input_error(base + "--style toon --set toon.shadow_map_size=63", "toon.shadow_map_size");
   expect_input_error(base + "--style sketch", "sketch");
   EXPECT_FALSE(file_exists(out));
@@ -170,6 +174,11 @@ TEST(Cli, StylesPresetsAndSet) {
   RunResult mine = run_sylva(base + "--style " + dir + "/mine.toml --set ink.fill=0.5");
   EXPECT_EQ(mine.status, 0) << mine.output;
   EXPECT_TRUE(file_exists(out));
+  for (const char* ends : {"--set edges.min_width=0 --set edges.min_length=0",
+                           "--set edges.min_width=4 --set edges.min_length=256"}) {
+    RunResult r = run_sylva(base + "--style ink " + ends);
+    EXPECT_EQ(r.status, 0) << ends << ": " << r.output;
+  }
   // An explicit foliage option wins over the preset and is checked like it.
   expect_input_error(base + "--style expressive --grid 1", "--grid");
 }

@@ -16,8 +16,8 @@ TEST(Compare, EveryBuiltInStyleOnOneSheet) {
   const RunResult r =
       run_sylva("compare " + small_tree() + " --size 96 --graph " + dir + "/g.dot -o " + out);
   ASSERT_EQ(r.status, 0) << r.output;
-  // Five styles, one Luft preprocessing shared by the four that read it.
-  EXPECT_NE(r.output.find("5 cells"), std::string::npos) << r.output;
+  // Six styles, one Luft preprocessing shared by the four that read it.
+  EXPECT_NE(r.output.find("6 cells"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("1 foliage preprocessing"), std::string::npos) << r.output;
   const cv::Mat sheet = cv::imread(out, cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(sheet.empty());
@@ -27,7 +27,8 @@ TEST(Compare, EveryBuiltInStyleOnOneSheet) {
   EXPECT_LT(sheet.cols, 3 * 96 + 40);
   EXPECT_GT(sheet.rows, 2 * 96 + 2 * 20);
   const std::string dot = read_file(dir + "/g.dot");
-  for (const char* pass : {"cell-2/edges", "cell-4/watercolor", "foliage-0/foliage-illumination"})
+  for (const char* pass :
+       {"cell-2/edges", "cell-4/watercolor", "cell-5/blobs", "foliage-0/foliage-illumination"})
     EXPECT_NE(dot.find(pass), std::string::npos) << pass;
   // Same inputs, same bytes.
   const RunResult again =

@@ -1,8 +1,9 @@
 // Edges, line drawing: the width scales with the resolution; lines are antialiased and even in
-// width in every direction; width and opacity follow depth; every parameter at both ends of its
-// range gives valid output; the same input gives the same bytes at any thread count; the graph
-// reads only what the enabled kinds need. With SYLVA_EDGES_LOOK_DIR set, also writes the cube's
-// lines as PNGs for a visual check. Scenes from tests/passes/edge_scenes.h.
+// width in every direction; width and opacity follow depth; min_width keeps small lines dark
+// and floors only; every parameter at both ends of its range gives valid output; the same input
+// gives the same bytes at any thread count; the graph reads only what the enabled kinds need.
+// With SYLVA_EDGES_LOOK_DIR set, also writes the cube's lines as PNGs for a visual check.
+// Scenes from tests/passes/edge_scenes.h.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -64,6 +65,7 @@ TEST(Edges, LinesAreAntialiasedAndEvenInWidth) {
     for (int x = 0; x < s; ++x)
       if (std::hypot(x - cx, y - cy) < r) in.depth.at<float>(y, x) = 1.0f;
   EdgeParams p = only(&EdgeParams::silhouette);
+  p.min_width = 0.0f;  // half-pixel lines too
   for (double width : {0.5, 1.0, 1.5, 3.0, 6.0}) {
     p.width = float(width * 1024.0 / s);
     const cv::Mat lines = detect_edges(in, p);
@@ -111,6 +113,64 @@ TEST(Edges, DepthWidthAndFadeFollowDepth) {
   cv::minMaxLoc(faded(cv::Rect(128, 0, 128, s)), nullptr, &far_max);
   EXPECT_FLOAT_EQ(float(near_max), 1.0f);
   EXPECT_FLOAT_EQ(float(far_max), 0.0f);  // the farthest lines vanish
+}
+
+// The darkest coverage across the vertical crease below the cube's centre, averaged over rows.
+double vertical_crease_darkness(const cv::Mat& lines) {
+  const int s = lines.rows;
+  const int half = std::max(4, int(0.05 * s));
+  double total = 0.0;
+  int rows = 0;
+  for (int y = s / 2 + s / 16; y < s / 2 + s / 8; ++y, ++rows) {
+    double darkest = 0.0;
+    cv::minMaxLoc(lines(cv::Rect(s / 2 - half, y, 2 * half, 1)), nullptr, &darkest);
+    total += darkest;
+  }
+  return total / rows;
+}
+
+TEST(Edges, MinWidthKeepsSmallLinesDark) {
+  // edges.width 2 is 0.5 px at 256 px: no pixel is more than half covered, a light grey.
+  EdgeParams p;
+  p.width = 2.0f;
+  const EdgeImages small = render(CubeScene{}, 256);
+  p.min_width = 0.0f;
+  const cv::Mat thin = detect_edges(small, p);
+  EXPECT_NEAR(vertical_crease_width(thin), 0.5, 0.1);
+  EXPECT_LT(vertical_crease_darkness(thin), 0.55);
+  p.min_width = 1.5f;
+  const cv::Mat floored = detect_edges(small, p);
+  EXPECT_NEAR(vertical_crease_width(floored), 1.5, 0.15);
+  EXPECT_GT(vertical_crease_darkness(floored), 0.74);  // every row has a pixel at least 3/4 ink
+  p.min_width = 4.0f;                                  // the top of the range
+  EXPECT_NEAR(vertical_crease_width(detect_edges(small, p)), 4.0, 0.3);
+  // A floor, not a scale: where the line is wider anyway (2 px at 1024), nothing changes.
+  const EdgeImages big = render(CubeScene{}, 1024);
+  p.min_width = 0.0f;
+  const cv::Mat free_width = detect_edges(big, p);
+  p.min_width = 1.5f;
+  EXPECT_EQ(cv::countNonZero(detect_edges(big, p) != free_width), 0);
+}
+
+TEST(Edges, MinWidthFloorsTheFarthestLinesOfDepthWidth) {
+  const int s = 256;
+  EdgeImages in;
+  in.depth = cv::Mat::zeros(s, s, CV_32FC1);
+  in.depth(cv::Rect(20, 40, 80, 160)).setTo(2.0f);
+  in.depth(cv::Rect(150, 40, 80, 160)).setTo(8.0f);
+  EdgeParams p = only(&EdgeParams::silhouette);
+  p.width = 16.0f;  // 4 px at 256
+  p.depth_width = 4.0f;
+  p.min_width = 2.0f;
+  const cv::Mat lines = detect_edges(in, p);
+  auto width_at = [&](int x0, int x1) {
+    double w = 0.0;
+    for (int x = x0; x < x1; ++x)
+      w += lines.at<float>(120, x);
+    return w;
+  };
+  EXPECT_NEAR(width_at(5, 35), 4.0, 0.1);     // near: full width
+  EXPECT_NEAR(width_at(135, 165), 2.0, 0.1);  // far: 1 px, floored at 2
 }
 
 TEST(Edges, EveryParameterAtBothEndsGivesValidOutput) {
@@ -166,12 +226,23 @@ TEST(Edges, SameInputSameBytes) {
 }
 
 TEST(Edges, SameBytesAtAnyThreadCount) {
-  // The pass works in parallel row bands; no pixel may depend on how they fall.
-  const EdgeImages in = render(CubeScene{.sphere = true}, 300);
+  // The pass works in parallel row bands; no pixel may depend on how they fall. Seeded specks
+  // in the normals give min_length groups to drop all over the image.
+  EdgeImages in = render(CubeScene{.sphere = true}, 300);
+  cv::RNG rng(11);
+  for (int k = 0; k < 400; ++k) {
+    const int x = rng.uniform(0, 298), y = rng.uniform(0, 299);
+    in.normal(cv::Rect(x, y, 2, 1)).setTo(cv::Scalar(0.6f, -0.8f, 0.0f));
+  }
   EdgeParams p = all_kinds();
   p.depth_width = 3.0f;
   p.fade = 0.4f;
+  p.min_width = 1.2f;
+  p.min_length = 24.0f;
   const cv::Mat any = detect_edges(in, p);
+  EdgeParams keep_all = p;
+  keep_all.min_length = 0.0f;
+  ASSERT_LT(count(mark_edges(in, p)), count(mark_edges(in, keep_all)));  // not vacuous
   // More threads than bands of some passes, then one (in this order: once limited to one
   // thread, TBB ignores requests for more).
   const int threads = cv::getNumThreads();

@@ -2,7 +2,8 @@
 // tilted plane has no interior edge at any distance; a cube seen corner-on gives its silhouette
 // from coverage and its three creases from normals and from second-order depth; counts fall as
 // thresholds rise; id boundaries are exact; the vector metric on short (low-ka) normals gives
-// fewer lines. Line drawing is tested in test_edge_lines.cpp.
+// fewer lines; min_length drops short fragments, keeps long lines, and scales with the size.
+// Line drawing is tested in test_edge_lines.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -160,6 +161,58 @@ TEST(Edges, VectorMetricOnShortNormalsGivesFewerEdges) {
   const int vector = count(mark_edges(scaled, p));
   EXPECT_EQ(angle, angle_unit);  // the angle metric ignores the length
   EXPECT_LT(vector, angle);
+}
+
+// A fronto-parallel surface whose normal turns 90 degrees below the middle row (one long
+// horizontal line), and optionally an isolated fragment: three pixels in a row at (size / 4,
+// size / 4) with a normal of their own, whose eight marks lie on a 4 x 2 pixel box (extent
+// hypot(4, 2) = 4.47 px).
+EdgeImages line_and_fragment(int size, bool fragment) {
+  EdgeImages in;
+  in.normal = cv::Mat(size, size, CV_32FC3, cv::Scalar(0.0f, 0.0f, 1.0f));
+  in.normal(cv::Rect(0, size / 2, size, size - size / 2)).setTo(cv::Scalar(1.0f, 0.0f, 0.0f));
+  if (fragment) in.normal(cv::Rect(size / 4, size / 4, 3, 1)).setTo(cv::Scalar(0.0f, 1.0f, 0.0f));
+  return in;
+}
+
+TEST(Edges, MinLengthDropsShortFragmentsAndKeepsLongLines) {
+  EdgeParams p = only(&EdgeParams::normal);
+  const int line_only = count(mark_edges(line_and_fragment(256, false), p));
+  EXPECT_EQ(line_only, 256);
+  const EdgeImages in = line_and_fragment(256, true);
+  // At 256 px, min_length is a quarter of its value in px: 16 -> 4 px keeps the 4.47 px
+  // fragment, 20 -> 5 px drops it; the 256 px line stays even at the top of the range (64 px).
+  for (const auto& [min_length, kept] : std::vector<std::pair<float, bool>>{
+           {0.0f, true}, {16.0f, true}, {20.0f, false}, {256.0f, false}}) {
+    p.min_length = min_length;
+    const EdgeMarks marks = mark_edges(in, p);
+    EXPECT_EQ(count(marks), line_only + (kept ? 8 : 0)) << min_length;
+    if (!kept) {
+      EXPECT_TRUE(same_marks(marks, mark_edges(line_and_fragment(256, false), p)));
+    }
+  }
+  // Scaled like the width: at 1024 px, min_length 16 is 16 px, and the same 3-pixel fragment
+  // goes.
+  p.min_length = 16.0f;
+  EXPECT_EQ(count(mark_edges(line_and_fragment(1024, true), p)), 1024);
+  p.min_length = 0.0f;
+  EXPECT_EQ(count(mark_edges(line_and_fragment(1024, true), p)), 1024 + 8);
+}
+
+TEST(Edges, MinLengthKeepsCountsFallingAsThresholdsRise) {
+  // Long lines split into shorter groups as the threshold rises, but never grow.
+  const EdgeImages in = render(CubeScene{.sphere = true}, 256);
+  EdgeParams p = only(&EdgeParams::normal);
+  p.min_length = 40.0f;
+  int previous = -1;
+  for (float v : {2.0f, 5.0f, 10.0f, 20.0f, 45.0f, 90.0f}) {
+    p.normal_threshold = v;
+    const int c = count(mark_edges(in, p));
+    if (previous >= 0) {
+      EXPECT_LE(c, previous) << "at " << v;
+    }
+    previous = c;
+  }
 }
 
 }  // namespace

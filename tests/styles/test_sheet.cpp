@@ -108,9 +108,10 @@ bool same(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(Sheet, CellsShareBuffersAndPreprocessingAndMatchTheirRenders) {
   SheetRig rig;
-  // Two ink widths read the same raster configuration; expressive reads other normals but
-  // the same foliage settings; a second grid is a second preprocessing.
-  auto entries = expand_sheet({"ink"}, {}, {"edges.width=1,3"});
+  // Two ink line widths read the same raster configuration (at 64 px every edges.width is
+  // under ink's 1.5 px edges.min_width, so the floor is what differs); expressive reads other
+  // normals but the same foliage settings; a second grid is a second preprocessing.
+  auto entries = expand_sheet({"ink"}, {}, {"edges.min_width=1.5,3"});
   auto more = expand_sheet({"expressive"}, {}, {"foliage.grid=32,16"});
   entries.insert(entries.end(), more.begin(), more.end());
   auto extra = expand_sheet({"standard"}, {"foliage.grid=64"}, {});

@@ -43,6 +43,8 @@ TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
       {"standard", Target::Id | Target::Normal | Target::Albedo},
       {"toon", Target::Id | Target::Color | Target::Depth},
       {"watercolor", Target::Normal | Target::Albedo},
+      // blobs: cluster ids, colour, albedo and depth; the preset's silhouettes use no normals.
+      {"blobs", Target::Normal | Target::Position | Target::Ka},
   };
   for (const Expect& e : cases) {
     const Style style(e.style);

@@ -287,6 +287,37 @@ TEST(Raster, AlbedoIsTheUnlitBaseColour) {
   }
 }
 
+TEST(Raster, MinifiedTexturesAverageInLinearLight) {
+  // A one-texel black and white checker seen from afar: the mip levels average it in linear
+  // light (sRGB 188, as glGenerateMipmap does for sRGB textures), not in sRGB (128), and do
+  // not alias to black or white. Sizes that are not powers of two halve with rounding down.
+  for (const cv::Size size : {cv::Size(256, 256), cv::Size(255, 129)}) {
+    Scene s = scene_of({make_quad(1.0f, 0.0f)});
+    Texture t;
+    t.name = "checker";
+    t.width = size.width;
+    t.height = size.height;
+    t.rgba.resize(size_t(size.area()) * 4);
+    for (int y = 0; y < size.height; ++y)
+      for (int x = 0; x < size.width; ++x) {
+        uint8_t* px = &t.rgba[size_t(y * size.width + x) * 4];
+        px[0] = px[1] = px[2] = (x + y) % 2 ? 255 : 0;
+        px[3] = 255;
+      }
+    s.textures.push_back(t);
+    s.materials[0].base_color_texture = 0;
+    set_ids(s.meshes[0], 1, 1);
+    Rasterizer r(gl());
+    r.upload(s);
+    const GBuffer g = r.render(front_camera(s, 32), ambient_only(0), request_of(Target::Albedo));
+    for (const cv::Point p : {cv::Point(16, 16), cv::Point(13, 18)}) {
+      const cv::Vec4b albedo = g.albedo.at<cv::Vec4b>(p);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(albedo[c], 188, 3) << size << " at " << p;
+    }
+  }
+}
+
 TEST(Raster, OutwardFoliageNormalsAreNotFlippedOnBackFaces) {
   // A baked (realigned) leaf's normal points out of the crown whichever side is seen.
   Material two_sided;

@@ -1,0 +1,494 @@
+#include "npr/ao_study.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "core/gl/gl_context.h"
+#include "core/gl/raster_pass.h"
+#include "core/graph/render_graph.h"
+#include "npr/ao_pass.h"
+#include "npr/study_chart.h"
+
+namespace sylva {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const std::vector<std::string> kModels = {"none",           "constant",          "luft-density",
+                                          "hegeman-sphere", "hegeman-ellipsoid", "hegeman-shells",
+                                          "raytraced"};
+
+std::string format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+std::string joined_models() {
+  std::string s;
+  for (const std::string& m : kModels)
+    s += (s.empty() ? "" : ", ") + m;
+  return s;
+}
+
+bool wants(const AoStudyOptions& o, const std::string& model) {
+  return std::find(o.models.begin(), o.models.end(), model) != o.models.end();
+}
+
+// The ray counts of raytraced rows: the listed ones except the reference's (its own row).
+std::vector<int> row_rays(const AoStudyOptions& o) {
+  std::vector<int> out;
+  for (int r : o.rays)
+    if (r != o.reference_rays) out.push_back(r);
+  return out;
+}
+
+// The pixels the comparison covers and their class.
+struct Pixels {
+  std::vector<int> index;     // row-major pixel index
+  std::vector<char> foliage;  // per entry of index: a foliage triangle's pixel
+};
+
+// Pixels covered by the scene (primitive id != 0) with a normal (those the ray-traced pass
+// traces), classed by the role of their primitive.
+Pixels classify_pixels(const Scene& scene, Rasterizer& rasterizer, const AoStudyOptions& o) {
+  std::vector<char> foliage_id;  // per primitive id: one of its triangles is foliage
+  for (const Mesh& m : scene.meshes)
+    for (size_t t = 0; t < m.triangle_count() && t < m.primitive_ids.size(); ++t) {
+      const uint32_t id = m.primitive_ids[t];
+      if (id >= foliage_id.size()) foliage_id.resize(size_t(id) + 1, 0);
+      if (t < m.roles.size() && m.roles[t] == Role::Foliage) foliage_id[id] = 1;
+    }
+  RasterRequest request = o.request;
+  request.targets = Target::Id | Target::Normal;
+  request.id_kind = IdKind::Primitive;
+  request.ao = AoShading{};
+  const GBuffer gb = rasterizer.render(o.camera, o.lighting, request);
+  Pixels px;
+  for (int y = 0; y < gb.id.rows; ++y)
+    for (int x = 0; x < gb.id.cols; ++x) {
+      const int id = gb.id.at<int32_t>(y, x);
+      if (id <= 0 || gb.normal.at<cv::Vec3f>(y, x) == cv::Vec3f(0, 0, 0)) continue;
+      px.index.push_back(y * gb.id.cols + x);
+      px.foliage.push_back(size_t(id) < foliage_id.size() && foliage_id[size_t(id)]);
+    }
+  return px;
+}
+
+// The model's AO buffer against the reference over one class of pixels.
+AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const Pixels& px, bool foliage) {
+  SYLVA_CHECK(ao.type() == CV_32FC1 && ref.type() == CV_32FC1 && ao.size() == ref.size() &&
+                  ao.isContinuous() && ref.isContinuous(),
+              "AO study: AO buffers are continuous float images of one size");
+  AoPixelError e;
+  double sum = 0, sq = 0, abs = 0;
+  const auto* a = ao.ptr<float>(0);
+  const auto* r = ref.ptr<float>(0);
+  for (size_t i = 0; i < px.index.size(); ++i) {
+    if (bool(px.foliage[i]) != foliage) continue;
+    const double v = a[px.index[i]], d = v - double(r[px.index[i]]);
+    sum += v;
+    sq += d * d;
+    abs += std::abs(d);
+    ++e.pixels;
+  }
+  if (e.pixels > 0) {
+    const double n = double(e.pixels);
+    e.mean = sum / n;
+    e.rmse = std::sqrt(sq / n);
+    e.mae = abs / n;
+  }
+  return e;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One frame as a render graph: the raster pass with `ao` (and, for rays > 0, the ray-traced
+// AO pass over its position and normal targets), presenting the colour and, when `want_ao`,
+// the AO buffer. Only execute() is timed. Returns the AO buffer (empty without want_ao).
+cv::Mat run_frame(const Scene& scene, Rasterizer& rasterizer, const AoStudyOptions& o,
+                  const AoShading& ao, int rays, bool want_ao, double* seconds) {
+  RenderGraph graph;
+  RasterSetup setup;
+  setup.rasterizer = &rasterizer;
+  setup.camera = o.camera;
+  setup.lighting = o.lighting;
+  setup.request = o.request;
+  setup.request.ao = ao;
+  const GBufferHandles gb = add_raster_pass(graph, setup);
+  const int ao_buffer = rays > 0 ? add_raytraced_ao_pass(graph, &scene, gb.position, gb.normal,
+                                                         o.camera.view, rays, o.seed)
+                                 : gb.ao;
+  graph.present(gb.color);
+  if (want_ao) graph.present(ao_buffer);
+  graph.compile();
+  const auto t0 = Clock::now();
+  graph.execute();
+  if (seconds) *seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return want_ao ? graph.get<cv::Mat>(ao_buffer).clone() : cv::Mat();
+}
+
+// The compared AO buffer (an untimed frame, which also warms the shader variant up) and the
+// median time of `repeats` frames; none's timed frames present the colour only.
+cv::Mat measure(const Scene& scene, Rasterizer& rasterizer, const AoStudyOptions& o,
+                const AoShading& ao, int rays, bool none, double& frame_seconds) {
+  cv::Mat out = run_frame(scene, rasterizer, o, ao, rays, true, nullptr);
+  if (none) run_frame(scene, rasterizer, o, ao, rays, false, nullptr);
+  std::vector<double> times;
+  for (int i = 0; i < o.repeats; ++i) {
+    double t = 0;
+    run_frame(scene, rasterizer, o, ao, rays, !none, &t);
+    times.push_back(t);
+  }
+  frame_seconds = median(times);
+  return out;
+}
+
+std::string describe(const AoStudyRow& r) {
+  std::string s = r.reference ? "reference: " + r.model : r.model;
+  if (r.shells) s += " k=" + std::to_string(*r.shells);
+  if (r.rays) s += " " + std::to_string(*r.rays) + " rays";
+  return s;
+}
+
+bool parse_alpha_rho(const std::string& text, double& v) {
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, v);
+  return !text.empty() && ec == std::errc() && p == end && std::isfinite(v) && v >= 0.0 &&
+         v <= 3.4e38;
+}
+
+}  // namespace
+
+void validate_ao_study(const AoStudyOptions& o) {
+  if (o.models.empty()) throw InputError("models", "name at least one of " + joined_models());
+  for (size_t i = 0; i < o.models.size(); ++i) {
+    if (std::find(kModels.begin(), kModels.end(), o.models[i]) == kModels.end())
+      throw InputError("models",
+                       "unknown model '" + o.models[i] + "' (allowed: " + joined_models() + ")");
+    if (std::find(o.models.begin(), o.models.begin() + long(i), o.models[i]) !=
+        o.models.begin() + long(i))
+      throw InputError("models", "'" + o.models[i] + "' is listed twice");
+  }
+  if (o.shells.empty()) throw InputError("shells", "name at least one k in [1, 64]");
+  for (int k : o.shells)
+    if (k < 1 || k > kMaxAoShells)
+      throw InputError("shells", "each must be in [1, 64], got " + std::to_string(k));
+  if (o.rays.empty()) throw InputError("rays", "name at least one ray count in [1, 4096]");
+  for (int r : o.rays)
+    if (r < 1 || r > 4096)
+      throw InputError("rays", "each must be in [1, 4096], got " + std::to_string(r));
+  if (o.reference_rays < 1 || o.reference_rays > 4096)
+    throw InputError("reference-rays",
+                     "must be in [1, 4096], got " + std::to_string(o.reference_rays));
+  if (o.repeats < 1 || o.repeats > 100)
+    throw InputError("repeats", "must be in [1, 100], got " + std::to_string(o.repeats));
+  double v = 0;
+  if (o.alpha_rho != "auto" && !parse_alpha_rho(o.alpha_rho, v))
+    throw InputError("ao.alpha_rho", "must be 'auto' or a number >= 0, got '" + o.alpha_rho + "'");
+  if (wants(o, "luft-density")) validate_foliage_params(o.luft);
+}
+
+size_t ao_study_runs(const AoStudyOptions& o) {
+  size_t n = 2;  // the reference and none
+  for (const std::string& m : o.models) {
+    if (m == "none") continue;
+    if (m == "hegeman-shells")
+      n += o.shells.size();
+    else if (m == "raytraced")
+      n += row_rays(o).size();
+    else
+      ++n;
+  }
+  return n;
+}
+
+AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
+  validate_ao_study(o);
+  AoStudy study;
+  study.width = o.camera.width;
+  study.height = o.camera.height;
+  study.repeats = o.repeats;
+  study.reference_rays = o.reference_rays;
+
+  const std::unique_ptr<GlContext> context = create_gl_context();
+  Rasterizer rasterizer(*context);
+  rasterizer.upload(scene);
+  const Pixels px = classify_pixels(scene, rasterizer, o);
+  if (px.index.empty())
+    throw InputError("view", "the scene covers no pixel of the " + std::to_string(study.width) +
+                                 "x" + std::to_string(study.height) + " frame");
+
+  auto finish = [&](AoStudyRow& row, const cv::Mat& ao, const cv::Mat& ref) {
+    row.foliage = compare(ao, ref, px, true);
+    row.nonfoliage = compare(ao, ref, px, false);
+    if (o.on_run) o.on_run(describe(row));
+  };
+
+  // The reference: ray-traced with the most rays, the same frame as the raytraced rows.
+  AoStudyRow ref_row;
+  ref_row.model = "raytraced";
+  ref_row.rays = o.reference_rays;
+  ref_row.reference = true;
+  ref_row.setup_seconds = 0.0;
+  double t = 0;
+  const cv::Mat ref = measure(scene, rasterizer, o, AoShading{}, o.reference_rays, false, t);
+  ref_row.frame_seconds = t;
+  double total = 0;
+  for (int i : px.index)
+    total += ref.ptr<float>(0)[i];
+  study.reference_mean = total / double(px.index.size());
+  finish(ref_row, ref, ref);
+
+  // none: the time baseline.
+  AoStudyRow none;
+  none.model = "none";
+  none.setup_seconds = 0.0;
+  const cv::Mat none_ao = measure(scene, rasterizer, o, AoShading{}, 0, true, t);
+  none.frame_seconds = t;
+  const double baseline = t;
+  none.added_seconds = 0.0;
+  ref_row.added_seconds = *ref_row.frame_seconds - baseline;
+  finish(none, none_ao, ref);
+
+  std::map<std::string, std::vector<AoStudyRow>> rows;  // per model, in measuring order
+  auto run_row = [&](AoStudyRow row, const std::function<AoShading()>& setup, int rays) {
+    try {
+      const auto t0 = Clock::now();
+      const AoShading shading = setup ? setup() : AoShading{};
+      row.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      if (shading.model == AoShading::Model::Shells) row.alpha_rho = shading.alpha_rho;
+      double frame = 0;
+      const cv::Mat ao = measure(scene, rasterizer, o, shading, rays, false, frame);
+      row.frame_seconds = frame;
+      row.added_seconds = frame - baseline;
+      finish(row, ao, ref);
+    } catch (const InputError& e) {
+      row.setup_seconds.reset();
+      row.error = e.what();
+      std::replace(row.error.begin(), row.error.end(), '\n', ' ');
+      if (o.on_run) o.on_run(describe(row) + " (failed)");
+    }
+    rows[row.model].push_back(row);
+  };
+  auto shells_setup = [&](const std::string& model, int k) {
+    return [&scene, &o, model, k] {
+      AoSettings s;
+      s.model = model;
+      s.shells = k;
+      s.alpha_rho = o.alpha_rho;
+      return scene_ao_shading(scene, s, o.seed);
+    };
+  };
+
+  if (wants(o, "constant")) {
+    AoStudyRow row;
+    row.model = "constant";
+    row.constant = study.reference_mean;
+    run_row(
+        row,
+        [&] {
+          AoShading s;
+          s.model = AoShading::Model::Constant;
+          s.constant = float(std::clamp(study.reference_mean, 0.0, 1.0));
+          return s;
+        },
+        0);
+  }
+  for (const char* model : {"hegeman-sphere", "hegeman-ellipsoid"})
+    if (wants(o, model)) {
+      AoStudyRow row;
+      row.model = model;
+      run_row(row, shells_setup(model, 1), 0);
+    }
+  if (wants(o, "hegeman-shells"))
+    for (int k : o.shells) {
+      AoStudyRow row;
+      row.model = "hegeman-shells";
+      row.shells = k;
+      run_row(row, shells_setup("hegeman-shells", k), 0);
+    }
+  if (wants(o, "raytraced"))
+    for (int rays : row_rays(o)) {
+      AoStudyRow row;
+      row.model = "raytraced";
+      row.rays = rays;
+      run_row(row, {}, rays);
+    }
+  // Last, because it replaces the uploaded normals and ka for good: the Luft preprocessing's
+  // ka is the AO (the realigned normals do not change the AO buffer).
+  if (wants(o, "luft-density")) {
+    AoStudyRow row;
+    row.model = "luft-density";
+    run_row(
+        row,
+        [&] {
+          const FoliageIllumination luft = compute_foliage_illumination(scene, o.luft);
+          rasterizer.set_vertex_shading(vertex_shading(luft, KaEncoding::Attribute));
+          AoShading s;
+          s.model = AoShading::Model::Ka;
+          return s;
+        },
+        0);
+  }
+
+  study.rows.push_back(none);
+  for (const std::string& m : kModels)
+    for (AoStudyRow& r : rows[m])
+      study.rows.push_back(std::move(r));
+  study.rows.push_back(ref_row);
+  return study;
+}
+
+std::string ao_study_csv(const AoStudy& study) {
+  std::string csv =
+      "model,shells,rays,reference,constant,alpha_rho,setup_seconds,frame_seconds,added_seconds,"
+      "foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,nonfoliage_pixels,nonfoliage_mean,"
+      "nonfoliage_rmse,nonfoliage_mae,error\n";
+  auto num = [](const std::optional<double>& v, const char* fmt) {
+    return v && std::isfinite(*v) ? format(fmt, *v) : std::string();
+  };
+  auto count = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
+  auto errors = [&](const AoPixelError& e) {
+    return std::to_string(e.pixels) + "," + num(e.mean, "%.6g") + "," + num(e.rmse, "%.6g") + "," +
+           num(e.mae, "%.6g");
+  };
+  for (const AoStudyRow& r : study.rows) {
+    std::string error;
+    if (!r.error.empty()) {
+      error = "\"";
+      for (char c : r.error)
+        error += c == '"' ? std::string("\"\"") : std::string(1, c);
+      error += "\"";
+    }
+    csv += r.model + "," + count(r.shells) + "," + count(r.rays) + "," + (r.reference ? "1" : "0") +
+           "," + num(r.constant, "%.6g") + "," + num(r.alpha_rho, "%.6g") + "," +
+           num(r.setup_seconds, "%.4f") + "," + num(r.frame_seconds, "%.5f") + "," +
+           num(r.added_seconds, "%.5f") + "," + errors(r.foliage) + "," + errors(r.nonfoliage) +
+           "," + error + "\n";
+  }
+  return csv;
+}
+
+// ---------------------------------------------------------------------------------------
+// The chart (npr/study_chart.h).
+
+namespace {
+
+struct ModelLook {
+  const char* model;
+  cv::Scalar colour;  // BGR
+  ChartMarker marker;
+};
+
+// Colour-blind-safe hues (Okabe-Ito), one per model.
+const ModelLook kLooks[] = {
+    {"none", cv::Scalar(150, 150, 150), ChartMarker::Square},
+    {"constant", cv::Scalar(40, 40, 40), ChartMarker::Diamond},
+    {"luft-density", cv::Scalar(115, 158, 0), ChartMarker::Circle},
+    {"hegeman-sphere", cv::Scalar(178, 114, 0), ChartMarker::Circle},
+    {"hegeman-ellipsoid", cv::Scalar(167, 121, 204), ChartMarker::Triangle},
+    {"hegeman-shells", cv::Scalar(233, 180, 86), ChartMarker::Diamond},
+    {"raytraced", cv::Scalar(0, 94, 213), ChartMarker::Circle},
+};
+
+}  // namespace
+
+cv::Mat plot_ao_study(const AoStudy& study, const std::string& scene_name, int width, int height) {
+  SYLVA_CHECK(width >= 600 && width <= 4000 && height >= 400 && height <= 4000,
+              "plot size in [600, 4000] x [400, 4000]");
+  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const ChartPainter P{img, std::min(width / 1200.0, height / 800.0)};
+
+  ChartPanel foliage, other;
+  foliage.title = "Foliage pixels";
+  other.title = "Non-foliage pixels (wood, ground)";
+  foliage.x_label = other.x_label = "frame time, seconds (log scale)";
+  foliage.y_label = other.y_label = "RMSE of the AO buffer against the reference";
+  foliage.empty_note = "no foliage pixels in this view";
+  other.empty_note = "no non-foliage pixels in this view";
+  double t_lo = 1e30, t_hi = 0;
+  size_t failed = 0;
+  std::vector<const ModelLook*> shown;
+  for (const ModelLook& look : kLooks) {
+    ChartSeries sf{look.colour, look.marker, {}};
+    ChartSeries so = sf;
+    for (const AoStudyRow& r : study.rows) {
+      if (r.model != look.model) continue;
+      if (!r.frame_seconds) {
+        ++failed;
+        continue;
+      }
+      const double x = std::max(*r.frame_seconds, 1e-5);
+      t_lo = std::min(t_lo, x);
+      t_hi = std::max(t_hi, x);
+      std::string label;
+      if (r.shells) label = "k=" + std::to_string(*r.shells);
+      if (r.rays) label = std::to_string(*r.rays);
+      if (r.foliage.rmse) sf.points.push_back({x, *r.foliage.rmse, label, r.reference});
+      if (r.nonfoliage.rmse) so.points.push_back({x, *r.nonfoliage.rmse, label, r.reference});
+    }
+    if (!sf.points.empty()) foliage.series.push_back(sf);
+    if (!so.points.empty()) other.series.push_back(so);
+    if (!sf.points.empty() || !so.points.empty()) shown.push_back(&look);
+  }
+  if (t_hi <= 0) t_lo = t_hi = 1;
+  const auto [x_lo, x_hi] = chart_log_range(t_lo, t_hi);
+
+  P.text("Ambient occlusion: error against frame time  -  " + scene_name, {width / 2, P.px(34)},
+         0.8, kChartBlack, 0.5, 2);
+  const AoStudyRow* ref = nullptr;
+  for (const AoStudyRow& r : study.rows)
+    if (r.reference) ref = &r;
+  char sub[320];
+  std::snprintf(sub, sizeof sub,
+                "%dx%d pixels (%zu foliage, %zu other);  reference: ray-traced, %d rays per "
+                "pixel;  constant = the reference's mean, %.3f",
+                study.width, study.height, ref ? ref->foliage.pixels : size_t(0),
+                ref ? ref->nonfoliage.pixels : size_t(0), study.reference_rays,
+                study.reference_mean);
+  P.text(sub, {width / 2, P.px(62)}, 0.48, kChartTextGrey, 0.5);
+  std::string sub2 = "frame time: median of " + std::to_string(study.repeats) + " timed frame" +
+                     (study.repeats == 1 ? "" : "s") + " (colour + AO buffer; none: colour only)";
+  if (failed) sub2 += ";  failed models are left out (see the CSV)";
+  P.text(sub2, {width / 2, P.px(84)}, 0.48, kChartTextGrey, 0.5);
+
+  const int rows = int(shown.size() + 3) / 4;
+  const int top = P.px(130), legend_h = P.px(40 + 26 * std::max(1, rows));
+  const int bottom = height - legend_h - P.px(62);
+  const int left = P.px(90), gap = P.px(100), right = P.px(30);
+  const int panel_w = (width - left - gap - right) / 2;
+  draw_chart_panel(P, {left, top, panel_w, bottom - top}, foliage, x_lo, x_hi, true);
+  draw_chart_panel(P, {left + panel_w + gap, top, panel_w, bottom - top}, other, x_lo, x_hi, false);
+
+  // Legend: four models per row.
+  const int entry_w = P.px(230);
+  const int x0 = std::max(P.px(20), (width - 4 * entry_w) / 2);
+  int y = height - legend_h + P.px(6);
+  for (size_t i = 0; i < shown.size(); ++i) {
+    const int x = x0 + int(i % 4) * entry_w;
+    const int yy = y + int(i / 4) * P.px(26);
+    cv::line(img, {x, yy - P.px(5)}, {x + P.px(36), yy - P.px(5)}, shown[i]->colour, P.px(2),
+             cv::LINE_AA);
+    P.marker(shown[i]->marker, {x + P.px(18), yy - P.px(5)}, shown[i]->colour, P.px(5));
+    P.text(shown[i]->model, {x + P.px(44), yy}, 0.48, kChartTextGrey);
+  }
+  const int ry = y + rows * P.px(26) + P.px(4);
+  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
+  P.text("the reference (zero error by definition);  small numbers: rays per pixel, k = shells",
+         {x0 + P.px(36), ry}, 0.45, kChartTextGrey);
+  return img;
+}
+
+}  // namespace sylva

@@ -1,0 +1,395 @@
+#include "passes/blobs.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "core/random.h"
+#include "npr/blob_shape.h"
+#include "npr/bspline.h"
+#include "passes/pass_common.h"
+#include "passes/watercolor_common.h"
+
+namespace sylva {
+
+void bind_blob_params(ParamSet& set, BlobParams& p) {
+  set.add_int("blobs.control_points", p.control_points, 3, 512, "",
+              "control points of each blob's shrink-wrapped outline (Dudley §4.2.1)");
+  set.add_float("blobs.step", p.step, 0.0, 1.0, "",
+                "fraction of the way to the centre a control point moves per shrink-wrap step",
+                true);
+  set.add_float("blobs.gap", p.gap, 0.0, 128.0, "px at 1024 px",
+                "gaps between a cluster's leaves closed before shrink-wrapping; 0 = none");
+  set.add_choice("blobs.outlines", p.outlines, {"visible", "alone"},
+                 "outline each cluster's visible leaves (one raster pass), or each cluster "
+                 "rasterised alone, hidden leaves included (one pass per cluster)");
+  set.add_int("blobs.peaks", p.peaks, 1, 16, "", "Gaussian peaks of each blob's height field");
+  set.add_float("blobs.peak_height", p.peak_height, 0.0, 2.0, "of the blob width",
+                "peak height: 0 flat, 1 as high as the blob is wide");
+  set.add_choice("blobs.blend_light", p.blend_light, {"directional", "point"},
+                 "the blend light whose brightness mixes wash (bright) and leaf detail (dark)");
+  set.add_float("blobs.blend_right", p.blend_right, -10.0, 10.0, "of the view distance",
+                "blend light position along the camera's right vector");
+  set.add_float("blobs.blend_up", p.blend_up, -10.0, 10.0, "of the view distance",
+                "blend light position along the camera's up vector");
+  set.add_float("blobs.blend_ambient", p.blend_ambient, 0.0, 1.0, "",
+                "blend light ambient strength (more = less detail everywhere)");
+  set.add_float("blobs.blend_diffuse", p.blend_diffuse, 0.0, 2.0, "",
+                "blend light diffuse strength (more = less detail on the lit side)");
+  set.add_bool("blobs.silhouettes", p.silhouettes,
+               "leaf silhouettes in the detail, found by the edges.* settings");
+  set.add_float("blobs.silhouette_tone", p.silhouette_tone, 0.0, 10.0, "x unlit blob colour",
+                "leaf silhouette colour: 0 black, 1 the blob colour, 10 white");
+  set.add_float("blobs.edge_width", p.edge_width, 0.0, 32.0, "px at 1024 px",
+                "width of the outline inside each blob; 0 = none");
+  set.add_float("blobs.edge_left", p.edge_left, 0.0, 4.0, "",
+                "extra outline width where the edge lies to the left (x (1 + edge_left))");
+  set.add_float("blobs.edge_tone", p.edge_tone, 0.0, 10.0, "x lit wash",
+                "outline colour: 0 black, 1 the lit wash");
+  set.add_float("blobs.translucency", p.translucency, 0.0, 1.0, "",
+                "how much of what lies behind shows through a blob");
+  set.add_float("blobs.variation", p.variation, 0.0, 0.5, "",
+                "per-blob brightness variation (wash x (1 +- variation)), seeded");
+  set.add_int("blobs.seed", p.seed, 0, 2147483647, "", "seed of the per-blob variation");
+}
+
+void validate_blob_params(const BlobParams& p) {
+  ParamSet set;
+  BlobParams copy;
+  bind_blob_params(set, copy);
+  // Re-setting every value through the bound set applies the same range checks as a preset.
+  set.set_number("blobs.control_points", p.control_points, "blobs.control_points");
+  set.set_number("blobs.step", p.step, "blobs.step");
+  set.set_number("blobs.gap", p.gap, "blobs.gap");
+  set.set_text("blobs.outlines", p.outlines, "blobs.outlines");
+  set.set_number("blobs.peaks", p.peaks, "blobs.peaks");
+  set.set_number("blobs.peak_height", p.peak_height, "blobs.peak_height");
+  set.set_text("blobs.blend_light", p.blend_light, "blobs.blend_light");
+  set.set_number("blobs.blend_right", p.blend_right, "blobs.blend_right");
+  set.set_number("blobs.blend_up", p.blend_up, "blobs.blend_up");
+  set.set_number("blobs.blend_ambient", p.blend_ambient, "blobs.blend_ambient");
+  set.set_number("blobs.blend_diffuse", p.blend_diffuse, "blobs.blend_diffuse");
+  set.set_number("blobs.silhouette_tone", p.silhouette_tone, "blobs.silhouette_tone");
+  set.set_number("blobs.edge_width", p.edge_width, "blobs.edge_width");
+  set.set_number("blobs.edge_left", p.edge_left, "blobs.edge_left");
+  set.set_number("blobs.edge_tone", p.edge_tone, "blobs.edge_tone");
+  set.set_number("blobs.translucency", p.translucency, "blobs.translucency");
+  set.set_number("blobs.variation", p.variation, "blobs.variation");
+  set.set_number("blobs.seed", p.seed, "blobs.seed");
+}
+
+bool blob_needs_position(const Lighting& lighting, const BlobParams& p) {
+  if (p.blend_light == "point") return true;
+  for (const Light& l : lighting.lights)
+    if (l.type == Light::Type::Point) return true;
+  return false;
+}
+
+namespace {
+
+using watercolor_internal::encode_srgb;
+using watercolor_internal::srgb_tables;
+
+// Per cluster: the mean unlit colour (linear BGR) and the mean view-space position.
+struct ClusterMeans {
+  cv::Vec3d albedo{0, 0, 0};
+  cv::Vec3d position{0, 0, 0};
+  double count = 0;
+};
+
+std::unordered_map<uint32_t, ClusterMeans> cluster_means(const BlobImages& in) {
+  const auto& lin = srgb_tables().to_linear;
+  std::unordered_map<uint32_t, ClusterMeans> means;
+  uint32_t last_id = 0;
+  ClusterMeans* last = nullptr;
+  for (int y = 0; y < in.id.rows; ++y) {
+    const int32_t* ids = in.id.ptr<int32_t>(y);
+    const cv::Vec4b* a = in.albedo.ptr<cv::Vec4b>(y);
+    const cv::Vec3f* pos = in.position.empty() ? nullptr : in.position.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < in.id.cols; ++x) {
+      const auto c = static_cast<uint32_t>(ids[x]);
+      if (c == 0) continue;
+      if (c != last_id || !last) {
+        last = &means[c];
+        last_id = c;
+      }
+      for (int k = 0; k < 3; ++k)
+        last->albedo[k] += lin[a[x][k]];
+      if (pos) last->position += cv::Vec3d(pos[x]);
+      last->count += 1;
+    }
+  }
+  for (auto& [id, m] : means) {
+    m.albedo /= m.count;
+    m.position /= m.count;
+  }
+  return means;
+}
+
+struct ViewLight {
+  glm::vec3 v;  // direction toward the light, or position
+  bool point;
+  glm::vec3 color;
+};
+
+glm::vec3 toward(const ViewLight& l, const glm::vec3& at) {
+  if (!l.point) return l.v;
+  const glm::vec3 d = l.v - at;
+  const float len = glm::length(d);
+  return len > 1e-12f ? d / len : glm::vec3(0, 0, 1);
+}
+
+// The colour target is drawn over the background's colour with alpha = coverage (the blobs style
+// clears alpha to 0, Style::configure), and supersampling averages in linear light, so a
+// partly covered pixel holds coverage x surface + (1 - coverage) x background: the surface's
+// own colour (linear BGR) and its coverage.
+glm::vec3 surface_color(const cv::Vec4b& c, const glm::vec3& background,
+                        const std::array<float, 256>& lin, float* coverage) {
+  const float a = c[3] / 255.0f;
+  *coverage = a;
+  const glm::vec3 v(lin[c[0]], lin[c[1]], lin[c[2]]);
+  if (a >= 1.0f || a <= 0.0f) return v;
+  return glm::clamp((v - (1.0f - a) * background) / a, 0.0f, 1.0f);
+}
+
+// The outline polygon of a blob (pixel coordinates, closed) and its bounding box.
+std::vector<glm::vec2> outline_polygon(const BlobOutline& b) {
+  return sample_closed_bspline(b.wrap.points, 8);
+}
+
+// cv drawing coordinates: integer = pixel centre, 4 fractional bits.
+constexpr int kShift = 4;
+cv::Point fixed_point(glm::vec2 p, cv::Point2f origin) {
+  return {static_cast<int>(std::lround((p.x - 0.5f - origin.x) * (1 << kShift))),
+          static_cast<int>(std::lround((p.y - 0.5f - origin.y) * (1 << kShift)))};
+}
+
+}  // namespace
+
+cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame& frame,
+                    const BlobParams& p) {
+  validate_blob_params(p);
+  const cv::Size size = in.id.size();
+  expect_image(in.id, CV_32SC1, {}, "blobs: id");
+  expect_image(in.color, CV_8UC4, size, "blobs: color");
+  expect_image(in.albedo, CV_8UC4, size, "blobs: albedo");
+  if (blob_needs_position(frame.lighting, p)) expect_image(in.position, CV_32FC3, size, "position");
+  if (!in.lines.empty()) expect_image(in.lines, CV_32FC1, size, "blobs: lines");
+  const auto& lin = srgb_tables().to_linear;
+  const double scale = reference_scale(size);
+
+  // Ground: background, then trunk and branches as the raster pass drew them.
+  cv::Mat out(size, CV_32FC4);
+  const glm::vec4 bg = frame.background;
+  const glm::vec3 bg_bgr(bg.b, bg.g, bg.r);
+  out.setTo(cv::Scalar(bg.b, bg.g, bg.r, bg.a));
+  if (frame.branch_cluster != 0)
+    for_bands(size.height, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) {
+        const int32_t* ids = in.id.ptr<int32_t>(y);
+        const cv::Vec4b* c = in.color.ptr<cv::Vec4b>(y);
+        cv::Vec4f* o = out.ptr<cv::Vec4f>(y);
+        for (int x = 0; x < size.width; ++x) {
+          if (static_cast<uint32_t>(ids[x]) != frame.branch_cluster) continue;
+          float a = 0;
+          const glm::vec3 s = surface_color(c[x], bg_bgr, lin, &a);
+          for (int k = 0; k < 3; ++k)
+            o[x][k] += (s[k] - o[x][k]) * a;
+          o[x][3] += (1.0f - o[x][3]) * a;
+        }
+      }
+    });
+
+  const cv::Mat ground = blobs.fade > 0.0f ? out.clone() : cv::Mat();
+  std::vector<ViewLight> lights;
+  for (const Light& l : frame.lighting.lights)
+    lights.push_back({light_in_view(l, frame.view), l.type == Light::Type::Point, l.color});
+  const auto means = cluster_means(in);
+  const float opacity = 1.0f - p.translucency;
+  const float edge_px = static_cast<float>(p.edge_width * scale);
+
+  auto paint_one = [&](cv::Mat& img, const BlobOutline& b) {
+    if (b.wrap.empty() || !(b.opacity > 0.0f)) return;
+    const auto mean_it = means.find(b.cluster);
+    const ClusterMeans m = mean_it == means.end() ? ClusterMeans{} : mean_it->second;
+    // Two rounds of the stream: one alone leaves neighbouring cluster ids' tones close.
+    uint64_t state = static_cast<uint64_t>(p.seed) ^ (uint64_t{b.cluster} * 0xD1B54A32D192ED03ull);
+    splitmix64(state);
+    const float tone = 1.0f + p.variation * (2.0f * static_cast<float>(uniform01(state)) - 1.0f);
+    const glm::vec3 wash(static_cast<float>(m.albedo[0]) * tone,
+                         static_cast<float>(m.albedo[1]) * tone,
+                         static_cast<float>(m.albedo[2]) * tone);  // B, G, R
+    const glm::vec3 at(static_cast<float>(m.position[0]), static_cast<float>(m.position[1]),
+                       static_cast<float>(m.position[2]));
+    glm::vec3 blend_dir = glm::normalize(glm::vec3(p.blend_right, p.blend_up, 1.0f));
+    if (p.blend_light == "point") {
+      const float d = std::max(-at.z, 1e-6f);
+      blend_dir = toward({glm::vec3(p.blend_right * d, p.blend_up * d, 0.0f), true, {}}, at);
+    }
+    std::vector<glm::vec3> light_dirs;
+    for (const ViewLight& l : lights)
+      light_dirs.push_back(toward(l, at));
+
+    const std::vector<glm::vec2> poly = outline_polygon(b);
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const glm::vec2& q : poly) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    const int pad = 2 + static_cast<int>(std::ceil(edge_px * (1.0f + p.edge_left)));
+    const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(lo.x)) - pad,
+                                            static_cast<int>(std::floor(lo.y)) - pad),
+                                  cv::Point(static_cast<int>(std::ceil(hi.x)) + pad + 1,
+                                            static_cast<int>(std::ceil(hi.y)) + pad + 1)) &
+                         cv::Rect(cv::Point(0, 0), size);
+    if (box.empty()) return;
+    const cv::Point2f origin(static_cast<float>(box.x), static_cast<float>(box.y));
+    std::vector<cv::Point> pts;
+    pts.reserve(poly.size());
+    for (const glm::vec2& q : poly)
+      pts.push_back(fixed_point(q, origin));
+    cv::Mat inside = cv::Mat::zeros(box.size(), CV_8UC1);
+    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{pts}, cv::Scalar(255), cv::LINE_AA,
+                 kShift);
+    cv::Mat edge;
+    if (edge_px > 0) {
+      edge = cv::Mat::zeros(box.size(), CV_8UC1);
+      double area = 0;  // shoelace, image coordinates: > 0 clockwise on screen
+      for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
+        area += static_cast<double>(a.x) * c.y - static_cast<double>(c.x) * a.y;
+      }
+      const float orient = area >= 0 ? 1.0f : -1.0f;
+      for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
+        const glm::vec2 d = c - a;
+        const float len = glm::length(d);
+        const float nx = len > 0 ? orient * d.y / len : 0.0f;  // outward normal's x
+        const float w = edge_px * (1.0f + p.edge_left * std::max(0.0f, -nx));
+        // The stroke is centred on the outline and clipped to the inside: twice the width,
+        // less the pixel an antialiased cv::line adds to its thickness.
+        const int thickness = std::max(1, static_cast<int>(std::lround(2.0f * w)) - 1);
+        cv::line(edge, fixed_point(a, origin), fixed_point(c, origin), cv::Scalar(255), thickness,
+                 cv::LINE_AA, kShift);
+      }
+    }
+    const BlobShape shape = make_blob_shape(b.wrap.points, b.wrap.center, p.peaks, p.peak_height);
+    const glm::vec3 sil = glm::min(glm::vec3(1.0f), p.silhouette_tone * wash);
+    const float ambient = frame.lighting.ambient;
+    for_bands(box.height, [&](int r0, int r1) {
+      for (int r = r0; r < r1; ++r) {
+        const int y = box.y + r;
+        const uint8_t* ins = inside.ptr<uint8_t>(r);
+        const uint8_t* eg = edge.empty() ? nullptr : edge.ptr<uint8_t>(r);
+        const int32_t* ids = in.id.ptr<int32_t>(y);
+        const cv::Vec4b* col = in.color.ptr<cv::Vec4b>(y);
+        const float* ln = in.lines.empty() ? nullptr : in.lines.ptr<float>(y);
+        cv::Vec4f* o = img.ptr<cv::Vec4f>(y);
+        for (int cx = 0; cx < box.width; ++cx) {
+          if (!ins[cx]) continue;
+          const int x = box.x + cx;
+          const glm::vec3 n = blob_normal(shape, glm::vec2(x + 0.5f, y + 0.5f));
+          glm::vec3 light(ambient);
+          for (size_t k = 0; k < lights.size(); ++k)
+            light += lights[k].color * std::max(0.0f, glm::dot(n, light_dirs[k]));
+          const glm::vec3 approx = wash * glm::vec3(light.b, light.g, light.r);
+          glm::vec3 c = approx;
+          if (static_cast<uint32_t>(ids[x]) == b.cluster) {
+            const float alpha = std::clamp(
+                p.blend_ambient + p.blend_diffuse * std::max(0.0f, glm::dot(n, blend_dir)), 0.0f,
+                1.0f);
+            float coverage = 0;
+            glm::vec3 detail = surface_color(col[x], bg_bgr, lin, &coverage);
+            if (ln) detail += (sil - detail) * ln[x];
+            // Where the leaf covers the pixel partly, the wash fills the rest.
+            c = approx + (approx * alpha + detail * (1.0f - alpha) - approx) * coverage;
+          }
+          if (eg && eg[cx]) {
+            const glm::vec3 ink = glm::min(glm::vec3(1.0f), p.edge_tone * approx);
+            c += (ink - c) * (eg[cx] / 255.0f);
+          }
+          const float a = ins[cx] / 255.0f * opacity * b.opacity;
+          for (int k = 0; k < 3; ++k)
+            o[x][k] += (c[k] - o[x][k]) * a;
+          o[x][3] += (1.0f - o[x][3]) * a;
+        }
+      }
+    });
+  };
+
+  for (size_t i : blobs.order)
+    paint_one(out, blobs.blobs[i]);
+  if (blobs.fade > 0.0f && blobs.next_order != blobs.order) {
+    // Dudley §5.1: cross-fade to the next keyframe's order instead of popping.
+    cv::Mat next = ground.clone();
+    for (size_t i : blobs.next_order)
+      paint_one(next, blobs.blobs[i]);
+    cv::addWeighted(out, 1.0 - blobs.fade, next, blobs.fade, 0.0, out);
+  }
+
+  const auto& tables = srgb_tables();
+  cv::Mat result(size, CV_8UC4);
+  for_bands(size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const cv::Vec4f* o = out.ptr<cv::Vec4f>(y);
+      cv::Vec4b* r = result.ptr<cv::Vec4b>(y);
+      for (int x = 0; x < size.width; ++x) {
+        for (int k = 0; k < 3; ++k)
+          r[x][k] = encode_srgb(tables, o[x][k]);
+        r[x][3] = cv::saturate_cast<uint8_t>(std::lround(o[x][3] * 255.0f));
+      }
+    }
+  });
+  return result;
+}
+
+ShrinkWrapParams blob_shrink_wrap(const BlobParams& p) {
+  ShrinkWrapParams sw;
+  sw.control_points = p.control_points;
+  sw.step = p.step;
+  return sw;
+}
+
+float blob_gap_radius(const BlobParams& p, const cv::Size& size) {
+  // blobs.gap is a diameter at the reference size; close_gaps takes a radius.
+  return static_cast<float>(0.5 * p.gap * reference_scale(size));
+}
+
+int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
+                           const BlobParams& p) {
+  validate_blob_params(p);
+  const int out = graph.resource("blob-outlines");
+  graph.add_pass("blob-outlines", {id, depth}, {out}, [=](PassContext& ctx) {
+    const cv::Mat& ids = ctx.read<cv::Mat>(id);
+    ctx.write(out, still_blob_set(find_blob_outlines(ids, ctx.read<cv::Mat>(depth), branch_cluster,
+                                                     blob_shrink_wrap(p),
+                                                     blob_gap_radius(p, ids.size()))));
+  });
+  return out;
+}
+
+int add_blobs_pass(RenderGraph& graph, int outlines, const BlobResources& r, const BlobFrame& frame,
+                   const BlobParams& p) {
+  validate_blob_params(p);
+  const int out = graph.resource("blobs");
+  std::vector<int> reads = {outlines, r.color, r.albedo, r.id};
+  const bool position = blob_needs_position(frame.lighting, p);
+  SYLVA_CHECK(!position || r.position >= 0, "blobs: a point light needs the position buffer");
+  if (position) reads.push_back(r.position);
+  if (r.lines >= 0) reads.push_back(r.lines);
+  graph.add_pass("blobs", reads, {out}, [=](PassContext& ctx) {
+    BlobImages in;
+    in.color = ctx.read<cv::Mat>(r.color);
+    in.albedo = ctx.read<cv::Mat>(r.albedo);
+    in.id = ctx.read<cv::Mat>(r.id);
+    if (position) in.position = ctx.read<cv::Mat>(r.position);
+    if (r.lines >= 0) in.lines = ctx.read<cv::Mat>(r.lines);
+    ctx.write(out, paint_blobs(in, ctx.read<BlobSet>(outlines), frame, p));
+  });
+  return out;
+}
+
+}  // namespace sylva

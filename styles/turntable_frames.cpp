@@ -1,0 +1,64 @@
+#include "styles/turntable_frames.h"
+
+#include "core/graph/render_graph.h"
+
+namespace sylva {
+
+void memoize_foliage(SheetScene& scene, bool quiet) {
+  auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
+  scene.foliage = [f = scene.foliage, memo, quiet](const FoliageSettings& s) {
+    IlluminationSetup setup = f(s);
+    setup.memo = memo;
+    if (quiet) setup.on_done = nullptr;
+    return setup;
+  };
+}
+
+TurntableRenderer::TurntableRenderer(const SheetScene& scene, const Style& style,
+                                     const TurntablePath& path, int keyframe_every,
+                                     const std::string& keyframe_cache,
+                                     const std::string& signature)
+    : m_scene(scene), m_base(scene.raster.camera), m_style(style), m_path(path) {
+  (void)last_keyframe(path.frames, keyframe_every);  // validates the interval
+  m_blobs = style.info().builder == "blobs";
+  if (!m_blobs || (keyframe_every == 1 && keyframe_cache.empty())) return;
+  // Keyframed blobs: outlines from their own small raster pass every n-th frame.
+  const BlobParams bp = style.params().blobs;
+  validate_blob_params(bp);
+  m_keyframes = std::make_unique<BlobKeyframes>(
+      path.frames, keyframe_every,
+      [setup = scene.raster, centre = scene.scene_sphere.centre, path, bp,
+       branch = scene.branch_cluster](int f) {
+        return turntable_blob_outlines(setup, centre, path, f, bp, branch);
+      },
+      keyframe_cache, signature);
+}
+
+TurntableRenderer::~TurntableRenderer() = default;
+
+int TurntableRenderer::keyframes_computed() const {
+  return m_keyframes ? m_keyframes->computed() : 0;
+}
+
+int TurntableRenderer::keyframes_read() const {
+  return m_keyframes ? m_keyframes->read() : 0;
+}
+
+TurntableFrame TurntableRenderer::render(int frame, bool coherence) {
+  m_scene.raster.camera = turntable_camera(m_base, m_scene.scene_sphere.centre, m_path, frame);
+  if (m_keyframes) m_scene.blobs = std::make_shared<const BlobSet>(m_keyframes->frame(frame));
+  RenderGraph graph;
+  const SheetPlan plan = add_sheet_passes(graph, {&m_style}, m_scene);
+  if (coherence) graph.present(plan.gbuffers[0].depth);  // the plant's mask
+  const int outlines = m_blobs && coherence ? graph.find_resource("blob-outlines") : -1;
+  if (outlines >= 0) graph.present(outlines);
+  graph.compile();
+  graph.execute();
+  TurntableFrame out;
+  out.image = graph.get<cv::Mat>(plan.outputs[0]);  // shares the pixels; the graph goes
+  if (coherence) out.mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
+  if (outlines >= 0) out.blobs = graph.get<BlobSet>(outlines);
+  return out;
+}
+
+}  // namespace sylva

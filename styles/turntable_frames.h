@@ -1,0 +1,65 @@
+// The frames of one turntable (styles/turntable.h) rendered in one style: what `sylva
+// turntable` and `sylva tradeoff --study keyframes` share. Each frame is one render graph
+// (styles/sheet.h) from the frame's camera; a blobs style keyframed every n frames takes its
+// outlines from npr/blob_keyframes.h (Dudley §5.1) instead of shrink-wrapping every frame.
+#pragma once
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+
+#include "npr/blob_keyframes.h"
+#include "styles/sheet.h"
+#include "styles/style.h"
+#include "styles/turntable.h"
+
+namespace sylva {
+
+// Wraps scene.foliage so the Luft preprocessing runs once for every graph rendered from this
+// scene (it does not depend on the view); `quiet` drops its progress report.
+void memoize_foliage(SheetScene& scene, bool quiet);
+
+// One rendered frame.
+struct TurntableFrame {
+  cv::Mat image;  // CV_8UC4 BGRA sRGB, the style's output
+  // With coherence only: the plant's coverage (CV_8UC1, 255 where depth > 0), and the blob
+  // outlines the frame painted (blobs styles).
+  cv::Mat mask;
+  std::optional<BlobSet> blobs;
+};
+
+class TurntableRenderer {
+ public:
+  // `scene` is frame 0's (its raster camera is the path's base; scene_sphere.centre the
+  // centre it turns about) and outlives the renderer, as does `style`. `keyframe_every` >= 1
+  // (validated by last_keyframe); keyframes are used when the style's builder is "blobs" and
+  // keyframe_every > 1 or `keyframe_cache` names a folder (npr/blob_keyframes.h, whose
+  // files carry `signature`). Throws InputError for a bad interval or blobs.* parameter.
+  TurntableRenderer(const SheetScene& scene, const Style& style, const TurntablePath& path,
+                    int keyframe_every, const std::string& keyframe_cache = "",
+                    const std::string& signature = "");
+  TurntableRenderer(const TurntableRenderer&) = delete;
+  TurntableRenderer& operator=(const TurntableRenderer&) = delete;
+  ~TurntableRenderer();
+
+  // Frame `frame` (0-based); `coherence` also fills mask and blobs (presenting them from the
+  // graph, which keeps the depth target and the outlines alive).
+  TurntableFrame render(int frame, bool coherence);
+
+  bool blobs() const { return m_blobs; }  // the style paints blobs
+  bool keyframed() const { return m_keyframes != nullptr; }
+  // Keyframes shrink-wrapped so far, and read from the cache; 0 when not keyframed.
+  int keyframes_computed() const;
+  int keyframes_read() const;
+
+ private:
+  SheetScene m_scene;
+  Camera m_base;
+  const Style& m_style;
+  TurntablePath m_path;
+  bool m_blobs = false;
+  std::unique_ptr<BlobKeyframes> m_keyframes;
+};
+
+}  // namespace sylva
