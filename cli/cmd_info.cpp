@@ -14,7 +14,7 @@ namespace {
 
 nlohmann::json describe(const Scene& scene) {
   using nlohmann::json;
-  size_t role_tris[4] = {0, 0, 0, 0};
+  size_t role_tris[kRoleCount] = {};
   std::set<uint32_t> leaves, clusters;
   for (const Mesh& m : scene.meshes)
     for (size_t t = 0; t < m.triangle_count(); ++t) {
@@ -33,7 +33,7 @@ nlohmann::json describe(const Scene& scene) {
   j["primitives"] = scene.max_primitive_id();
   j["dropped_degenerate_triangles"] = scene.report.dropped_degenerate;
   json roles = json::object();
-  for (int r = 0; r < 4; ++r)
+  for (int r = 0; r < kRoleCount; ++r)
     roles[role_name(static_cast<Role>(r))] = role_tris[r];
   j["triangles_by_role"] = roles;
   j["foliage"] = {{"rule", scene.report.foliage_rule}, {"reason", scene.report.foliage_reason}};

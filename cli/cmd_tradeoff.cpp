@@ -41,6 +41,26 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
   return out;
 }
 
+std::string table_cell(const std::optional<double>& v, const char* fmt) {
+  if (!v) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, fmt, *v);
+  return buf;
+}
+
+void write_study_files(const TradeoffOutputs& out, const std::string& csv,
+                       const std::function<cv::Mat()>& plot) {
+  cv::Mat picture;
+  if (!out.plot.empty()) picture = plot();
+  write_file_atomic(out.csv, csv);
+  if (!out.plot.empty()) write_image(out.plot, picture);
+}
+
+void print_written(const TradeoffOutputs& out, size_t rows) {
+  std::printf("wrote %s (%zu rows)%s%s\n", out.csv.c_str(), rows, out.plot.empty() ? "" : " and ",
+              out.plot.c_str());
+}
+
 namespace {
 
 // The studies `--study` accepts.
@@ -79,13 +99,6 @@ std::vector<KaEncoding> parse_encodings(const std::string& text) {
   return out;
 }
 
-std::string cell(const std::optional<double>& v, const char* fmt) {
-  if (!v) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, fmt, *v);
-  return buf;
-}
-
 // One line per preprocessing run; the encodings' interior ka errors side by side.
 void print_table(const FoliageStudy& study, const std::vector<KaEncoding>& encodings) {
   std::printf("%-8s %5s %-8s %10s %9s %9s %9s %9s", "fraction", "grid", "normals", "generators",
@@ -101,12 +114,13 @@ void print_table(const FoliageStudy& study, const std::vector<KaEncoding>& encod
       std::printf(" failed: %s\n", r.error.c_str());
       continue;
     }
-    std::printf(" %10zu %9s %9s %9s %9s", r.generators.value_or(0), cell(r.seconds, "%.3f").c_str(),
-                cell(r.normal_mean_deg, "%.3f").c_str(), cell(r.normal_p95_deg, "%.3f").c_str(),
-                cell(r.ka_rmse, "%.5f").c_str());
+    std::printf(
+        " %10zu %9s %9s %9s %9s", r.generators.value_or(0), table_cell(r.seconds, "%.3f").c_str(),
+        table_cell(r.normal_mean_deg, "%.3f").c_str(), table_cell(r.normal_p95_deg, "%.3f").c_str(),
+        table_cell(r.ka_rmse, "%.5f").c_str());
     for (size_t e = 0; e < encodings.size(); ++e)
       std::printf(" %*s", encodings[e] == KaEncoding::Length ? 13 : 16,
-                  cell(study.rows[i + e].ka_interior_rmse, "%.5f").c_str());
+                  table_cell(study.rows[i + e].ka_interior_rmse, "%.5f").c_str());
     std::printf("%s\n", r.reference ? "  (reference)" : "");
   }
 }
@@ -232,18 +246,15 @@ Action add_tradeoff_command(CLI::App& app) {
       study = run_foliage_study(scene, so);
     }
     const std::string name = std::filesystem::path(o->scene.path).stem().string();
-    const std::string csv = foliage_study_csv(study);
-    cv::Mat plot;
-    if (!o->plot.empty()) plot = plot_foliage_study(study, name);
-    write_file_atomic(o->out, csv);
-    if (!o->plot.empty()) write_image(o->plot, plot);
+    const TradeoffOutputs outputs{o->out, o->plot, o->quiet};
+    write_study_files(outputs, foliage_study_csv(study),
+                      [&] { return plot_foliage_study(study, name); });
 
     std::printf("%s: %zu leaves; reference %.2f s (rho %.4g, tau %.4g, d_min %.4g)\n", name.c_str(),
                 study.reference.leaves, study.reference_seconds, study.reference.rho,
                 study.reference.tau, study.reference.d_min);
     print_table(study, so.encodings);
-    std::printf("wrote %s (%zu rows)%s%s\n", o->out.c_str(), study.rows.size(),
-                o->plot.empty() ? "" : " and ", o->plot.c_str());
+    print_written(outputs, study.rows.size());
   };
 }
 

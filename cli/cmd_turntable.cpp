@@ -1,21 +1,19 @@
 // sylva turntable SCENE --style S --frames N [--degrees 360] [--axis y] [--zoom Z] [--fps F]
 //   [--keyframe-every n] [--keyframe-cache DIR] [--frame-range A:B] [--resume]
-//   [--report coherence.csv] -o OUT.mp4|DIR/
-#include <unistd.h>
-
+//   [--report coherence.csv] -o OUT.mp4|OUT.gif|DIR/
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <sstream>
 
 #include "cli/commands.h"
 #include "cli/frame.h"
+#include "cli/video_out.h"
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/gif_writer.h"
 #include "core/io/image_io.h"
 #include "core/progress.h"
 #include "npr/blob_keyframes.h"
@@ -33,42 +31,6 @@ std::string frame_name(int frame) {
   std::snprintf(name, sizeof name, "frame-%05d.png", frame);
   return name;
 }
-
-// An MP4 written under a temporary name beside the target and renamed when complete.
-class VideoOut {
- public:
-  VideoOut(const std::string& path, double fps, cv::Size size) : m_path(path) {
-    const fs::path p(path);
-    m_temp = (p.parent_path() /
-              ("." + p.stem().string() + ".partial-" + std::to_string(getpid()) + ".mp4"))
-                 .string();
-    for (const char* codec : {"avc1", "mp4v"}) {
-      const int fourcc = cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]);
-      if (m_writer.open(m_temp, cv::CAP_FFMPEG, fourcc, fps, size)) return;
-    }
-    throw InputError("--output", "cannot open an MP4 writer for '" + path + "' (FFmpeg)");
-  }
-  ~VideoOut() {
-    if (!m_done) {
-      m_writer.release();
-      std::error_code ec;
-      fs::remove(m_temp, ec);
-    }
-  }
-  void write(const cv::Mat& bgr) { m_writer.write(bgr); }
-  void finish() {
-    m_writer.release();
-    std::error_code ec;
-    fs::rename(m_temp, m_path, ec);
-    if (ec) throw InputError("--output", "cannot write '" + m_path + "': " + ec.message());
-    m_done = true;
-  }
-
- private:
-  std::string m_path, m_temp;
-  cv::VideoWriter m_writer;
-  bool m_done = false;
-};
 
 // Everything a keyframe's blobs depend on, for --keyframe-cache: the scene, the frame-0 camera,
 // the image, the path, the interval and the blobs.* settings.
@@ -109,7 +71,8 @@ Action add_turntable_command(CLI::App& app) {
   auto o = std::make_shared<Opts>();
   o->view.size = "512x512";
   CLI::App* cmd = app.add_subcommand(
-      "turntable", "Render a turntable animation in a style: an MP4 or a folder of PNG frames");
+      "turntable",
+      "Render a turntable animation in a style: an MP4, a GIF or a folder of PNG frames");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
   add_illumination_options(*cmd, o->illumination);
@@ -123,7 +86,10 @@ Action add_turntable_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--zoom", o->path.zoom, "Image magnification, (0, 100]; 1 = framed")
       ->capture_default_str();
-  cmd->add_option("--fps", o->fps, "Frames per second of the MP4, [1, 240]")->capture_default_str();
+  cmd->add_option("--fps", o->fps,
+                  "Frames per second of the MP4 or GIF, [1, 240] (a GIF stores whole hundredths of "
+                  "a second)")
+      ->capture_default_str();
   cmd->add_option("--frame-range", o->range,
                   "Render frames A to B-1 only (A:B, 0-based; folder output), e.g. for a "
                   "render farm; the frames equal those of a full run");
@@ -141,7 +107,8 @@ Action add_turntable_command(CLI::App& app) {
   cmd->add_flag("-q,--quiet", o->quiet, "No progress output");
   cmd->add_option(
          "-o,--output", o->out,
-         "Output .mp4, or a folder for PNG frames frame-00000.png, ... (a name without extension)")
+         "Output .mp4, .gif, or a folder for PNG frames frame-00000.png, ... (a name without "
+         "extension)")
       ->required();
   return [o, cmd] {
     o->path.axis = o->axis.size() == 1 ? o->axis[0] : '?';
@@ -151,9 +118,9 @@ Action add_turntable_command(CLI::App& app) {
     const bool to_dir =
         o->out.ends_with("/") || fs::is_directory(o->out) || fs::path(o->out).extension().empty();
     if (!to_dir) {
-      check_output_path("--output", o->out, {".mp4"});
+      check_output_path("--output", o->out, {".mp4", ".gif"});
       if (!o->range.empty())
-        throw InputError("--frame-range", "needs a folder output (an MP4 is written whole)");
+        throw InputError("--frame-range", "needs a folder output (an MP4 or GIF is written whole)");
       if (o->resume) throw InputError("--resume", "needs a folder output");
     } else {
       fs::path dir = fs::path(o->out).lexically_normal();
@@ -185,8 +152,13 @@ Action add_turntable_command(CLI::App& app) {
       fs::create_directories(o->out, ec);
       if (ec) throw InputError("--output", "cannot create '" + o->out + "': " + ec.message());
     }
+    const bool to_gif = !to_dir && fs::path(o->out).extension() == ".gif";
     std::unique_ptr<VideoOut> video;
-    if (!to_dir)
+    std::unique_ptr<GifWriter> gif;
+    if (to_gif)
+      gif = std::make_unique<GifWriter>(o->out, o->fps, cv::Size(base.width, base.height),
+                                        o->path.frames);
+    else if (!to_dir)
       video = std::make_unique<VideoOut>(o->out, o->fps, cv::Size(base.width, base.height));
     TurntableRenderer renderer(
         scene, *style, o->path, o->keyframe_every, o->keyframe_cache,
@@ -210,6 +182,8 @@ Action add_turntable_command(CLI::App& app) {
       TurntableFrame now = renderer.render(i, !o->report.empty());
       if (to_dir) {
         write_image(file, now.image);
+      } else if (gif) {
+        gif->write(now.image);
       } else {
         cv::Mat bgr;
         cv::cvtColor(now.image, bgr, cv::COLOR_BGRA2BGR);
@@ -235,6 +209,7 @@ Action add_turntable_command(CLI::App& app) {
     progress.finish();
     release_frame(frame);
     if (video) video->finish();
+    if (gif) gif->finish();
     if (!o->report.empty()) write_file_atomic(o->report, csv.str());
     std::printf("wrote %s (%d frame(s)%s, %dx%d, style %s)\n", o->out.c_str(), written,
                 skipped > 0 ? (", " + std::to_string(skipped) + " kept").c_str() : "", base.width,

@@ -5,6 +5,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/scene/ground_plane.h"
 #include "core/scene/load.h"
 #include "npr/leaf_clusters.h"
 
@@ -53,6 +54,11 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--background", o.background, "white, black, transparent or #RRGGBB")
       ->capture_default_str();
   cmd.add_option("--ambient", o.ambient, "Ambient light intensity, [0, 1]")->capture_default_str();
+  cmd.add_flag("--ground", o.ground,
+               "Add a ground plane under the scene's lowest point (a square 8 framing radii "
+               "wide); it receives the crown's occlusion with ao.model=hegeman-*");
+  cmd.add_option("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB")
+      ->capture_default_str();
   cmd.add_option("--light", o.lights,
                  "A light, repeatable up to 8, replacing the default three: "
                  "dir|point:X,Y,Z[:INTENSITY[:camera|scene]] (direction toward the light or "
@@ -70,6 +76,19 @@ void parse_size(const std::string& s, int& width, int& height) {
     throw InputError("--size", "each side must be in [1, 16384] pixels, got '" + s + "'");
 }
 
+namespace {
+
+// "#RRGGBB", already checked: linear RGBA with alpha 1.
+glm::vec4 hex_color(const std::string& s) {
+  unsigned v = std::stoul(s.substr(1), nullptr, 16);
+  auto lin = [](unsigned c) {  // sRGB to linear, so '#808080' means the grey the user sees
+    return srgb_to_linear(c / 255.0f);
+  };
+  return {lin((v >> 16) & 255), lin((v >> 8) & 255), lin(v & 255), 1.0f};
+}
+
+}  // namespace
+
 glm::vec4 parse_background(const std::string& s) {
   if (s == "white") return {1, 1, 1, 1};
   if (s == "black") return {0, 0, 0, 1};
@@ -78,11 +97,14 @@ glm::vec4 parse_background(const std::string& s) {
   if (!std::regex_match(s, re))
     throw InputError("--background",
                      "expected white, black, transparent or #RRGGBB, got '" + s + "'");
-  unsigned v = std::stoul(s.substr(1), nullptr, 16);
-  auto lin = [](unsigned c) {  // sRGB to linear, so '#808080' means the grey the user sees
-    return srgb_to_linear(c / 255.0f);
-  };
-  return {lin((v >> 16) & 255), lin((v >> 8) & 255), lin(v & 255), 1.0f};
+  return hex_color(s);
+}
+
+glm::vec4 parse_ground_color(const std::string& s) {
+  static const std::regex re("^#([0-9a-fA-F]{6})$");
+  if (!std::regex_match(s, re))
+    throw InputError("--ground-color", "expected #RRGGBB, got '" + s + "'");
+  return hex_color(s);
 }
 
 Light parse_light(const std::string& spec) {
@@ -121,11 +143,16 @@ void resolve_view_options(ViewOptions& o) {
     throw InputError("--ssaa", "size x ssaa must stay within 16384 pixels per side");
   if (!(o.ambient >= 0.0f && o.ambient <= 1.0f)) throw InputError("--ambient", "must be in [0, 1]");
   parse_background(o.background);
+  parse_ground_color(o.ground_color);
   if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
   for (const std::string& l : o.lights)
     parse_light(l);
   if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object")
     throw InputError("--id", "expected primitive, cluster or object, got '" + o.id_kind + "'");
+}
+
+void apply_ground_option(Scene& scene, const ViewOptions& o) {
+  if (o.ground) add_ground_plane(scene, parse_ground_color(o.ground_color));
 }
 
 RasterRequest raster_request(const ViewOptions& o) {

@@ -1,6 +1,6 @@
 // Options shared by the sylva subcommands: scene loading (--foliage, --clusters, --seed),
 // camera and image (--size, --azimuth, --elevation, --distance, --fov, --ortho, --ssaa,
-// --background, --ambient), and the loader pipeline they drive.
+// --background, --ambient, --ground, --ground-color), and the loader pipeline they drive.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -31,11 +31,19 @@ struct ViewOptions {
   float ambient = 0.35f;
   std::string id_kind = "primitive";
   std::vector<std::string> lights;  // --light specs; empty = the three-light default
-  int width = 0, height = 0;        // parsed from size
+  // --ground: a ground plane under the scene (core/scene/ground_plane.h); off by default.
+  bool ground = false;
+  // --ground-color: "#RRGGBB" (sRGB, as --background) of the ground plane; a neutral light
+  // grey by default.
+  std::string ground_color = "#b4b4ac";
+  int width = 0, height = 0;  // parsed from size
 };
 void add_view_options(CLI::App& cmd, ViewOptions& o);
-// Parses and range-checks the view options (size, ssaa, background, ambient, id kind).
+// Parses and range-checks the view options (size, ssaa, background, ambient, id kind,
+// ground colour).
 void resolve_view_options(ViewOptions& o);
+// Adds the ground plane to the loaded scene when --ground is given.
+void apply_ground_option(Scene& scene, const ViewOptions& o);
 RasterRequest raster_request(const ViewOptions& o);
 Lighting lighting_for(const ViewOptions& o);
 
@@ -46,5 +54,7 @@ void parse_size(const std::string& s, int& width, int& height);
 Light parse_light(const std::string& spec);
 // "white", "black", "transparent" or "#RRGGBB"; returns linear RGBA.
 glm::vec4 parse_background(const std::string& s);
+// "#RRGGBB" (sRGB); returns linear RGBA, alpha 1. Throws InputError("--ground-color", ...).
+glm::vec4 parse_ground_color(const std::string& s);
 
 }  // namespace sylva::cli

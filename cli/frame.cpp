@@ -4,6 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/gl/depth_range.h"
 #include "core/io/image_io.h"
 
 namespace sylva::cli {
@@ -12,7 +13,9 @@ std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
   resolve_view_options(vo);
   auto f = std::make_unique<Frame>();
   f->scene = load_scene_for_cli(so);
+  apply_ground_option(f->scene, vo);
   f->setup.camera = make_orbit_camera(f->scene.framing_sphere(), vo.orbit, vo.width, vo.height);
+  fit_camera_depth(f->setup.camera, f->scene);
   f->context = create_gl_context();
   f->rasterizer = std::make_unique<Rasterizer>(*f->context);
   f->rasterizer->upload(f->scene);

@@ -5,6 +5,9 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,22 @@ std::vector<T> parse_numbers(const std::string& text, const std::string& where) 
   return out;
 }
 
+struct TradeoffOutputs {
+  std::string csv, plot;  // plot empty = none
+  bool quiet = false;
+};
+
+// A table cell: `v` printed with the printf format `fmt`, or "-" when there is no value.
+std::string table_cell(const std::optional<double>& v, const char* fmt);
+
+// Writes the study's CSV and, when out.plot is set, the picture `plot()` draws (each file
+// atomically; the plot is drawn before either file is written).
+void write_study_files(const TradeoffOutputs& out, const std::string& csv,
+                       const std::function<cv::Mat()>& plot);
+
+// "wrote OUT.csv (N rows) and OUT.png" on stdout.
+void print_written(const TradeoffOutputs& out, size_t rows);
+
 // The options only `--study ao` reads.
 struct AoStudyCliOptions {
   ViewOptions view;  // the frame (size default 512x512)
@@ -48,11 +67,6 @@ struct AoStudyCliOptions {
 
 // Registers the view options and --models, --shells, --rays, --reference-rays, --repeats.
 void add_ao_study_options(CLI::App& cmd, AoStudyCliOptions& o);
-
-struct TradeoffOutputs {
-  std::string csv, plot;  // plot empty = none
-  bool quiet = false;
-};
 
 // `sylva tradeoff SCENE --study ao`: parses and checks every option, loads the scene, runs
 // the study (progress on stderr), writes the CSV (and the plot) atomically and prints the

@@ -7,21 +7,13 @@
 
 #include "cli/commands.h"
 #include "cli/tradeoff.h"
-#include "core/io/atomic_file.h"
-#include "core/io/image_io.h"
+#include "core/gl/depth_range.h"
 #include "core/progress.h"
 #include "npr/ao_study.h"
 
 namespace sylva::cli {
 
 namespace {
-
-std::string cell(const std::optional<double>& v, const char* fmt) {
-  if (!v) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, fmt, *v);
-  return buf;
-}
 
 void print_table(const AoStudy& study) {
   std::printf("%-18s %5s %9s %9s %9s %9s %9s %9s %9s %9s\n", "model", "k/ray", "alpha_rho",
@@ -35,11 +27,12 @@ void print_table(const AoStudy& study) {
       std::printf(" failed: %s\n", r.error.c_str());
       continue;
     }
-    std::printf(" %9s %9s %9s %9s %9s %9s %9s %9s%s\n", cell(r.alpha_rho, "%.4g").c_str(),
-                cell(r.setup_seconds, "%.3f").c_str(), cell(r.frame_seconds, "%.4f").c_str(),
-                cell(r.added_seconds, "%.4f").c_str(), cell(r.foliage.rmse, "%.4f").c_str(),
-                cell(r.foliage.mae, "%.4f").c_str(), cell(r.nonfoliage.rmse, "%.4f").c_str(),
-                cell(r.nonfoliage.mae, "%.4f").c_str(), r.reference ? "  (reference)" : "");
+    std::printf(
+        " %9s %9s %9s %9s %9s %9s %9s %9s%s\n", table_cell(r.alpha_rho, "%.4g").c_str(),
+        table_cell(r.setup_seconds, "%.3f").c_str(), table_cell(r.frame_seconds, "%.4f").c_str(),
+        table_cell(r.added_seconds, "%.4f").c_str(), table_cell(r.foliage.rmse, "%.4f").c_str(),
+        table_cell(r.foliage.mae, "%.4f").c_str(), table_cell(r.nonfoliage.rmse, "%.4f").c_str(),
+        table_cell(r.nonfoliage.mae, "%.4f").c_str(), r.reference ? "  (reference)" : "");
   }
 }
 
@@ -91,8 +84,10 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
     throw InputError(where, std::string(e.what()).substr(e.where().size() + 2));
   }
 
-  const Scene scene = load_scene_for_cli(scene_options);
+  Scene scene = load_scene_for_cli(scene_options);
+  apply_ground_option(scene, o.view);
   so.camera = make_orbit_camera(scene.framing_sphere(), o.view.orbit, o.view.width, o.view.height);
+  fit_camera_depth(so.camera, scene);
   so.lighting = lighting_for(o.view);
   so.request = raster_request(o.view);
   AoStudy study;
@@ -104,11 +99,7 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
     study = run_ao_study(scene, so);
   }
   const std::string name = std::filesystem::path(scene_options.path).stem().string();
-  const std::string csv = ao_study_csv(study);
-  cv::Mat plot;
-  if (!out.plot.empty()) plot = plot_ao_study(study, name);
-  write_file_atomic(out.csv, csv);
-  if (!out.plot.empty()) write_image(out.plot, plot);
+  write_study_files(out, ao_study_csv(study), [&] { return plot_ao_study(study, name); });
 
   std::printf(
       "%s: %dx%d; reference: ray-traced, %d rays per pixel (mean %.4f); frame time: median of "
@@ -116,8 +107,7 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
       name.c_str(), study.width, study.height, study.reference_rays, study.reference_mean,
       study.repeats);
   print_table(study);
-  std::printf("wrote %s (%zu rows)%s%s\n", out.csv.c_str(), study.rows.size(),
-              out.plot.empty() ? "" : " and ", out.plot.c_str());
+  print_written(out, study.rows.size());
 }
 
 }  // namespace sylva::cli

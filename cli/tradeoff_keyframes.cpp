@@ -8,8 +8,6 @@
 #include "cli/commands.h"
 #include "cli/frame.h"
 #include "cli/tradeoff.h"
-#include "core/io/atomic_file.h"
-#include "core/io/image_io.h"
 #include "core/progress.h"
 #include "styles/keyframe_study.h"
 
@@ -17,21 +15,15 @@ namespace sylva::cli {
 
 namespace {
 
-std::string cell(const std::optional<double>& v, const char* fmt) {
-  if (!v) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, fmt, *v);
-  return buf;
-}
-
 void print_table(const KeyframeStudy& study) {
   std::printf("%6s %9s %9s %9s %9s %9s %9s %9s %9s\n", "every", "seconds", "s/frame", "keyframes",
               "flick_avg", "flick_max", "jitter_px", "err_avg", "err_max");
   for (const KeyframeStudyRow& r : study.rows)
     std::printf("%6d %9.3f %9.4f %9d %9s %9s %9s %9.3f %9.3f%s\n", r.every, r.seconds,
-                r.seconds_per_frame, r.keyframes, cell(r.flicker_mean, "%.3f").c_str(),
-                cell(r.flicker_max, "%.3f").c_str(), cell(r.jitter_mean, "%.3f").c_str(),
-                r.error_mean, r.error_max, r.reference ? "  (reference)" : "");
+                r.seconds_per_frame, r.keyframes, table_cell(r.flicker_mean, "%.3f").c_str(),
+                table_cell(r.flicker_max, "%.3f").c_str(),
+                table_cell(r.jitter_mean, "%.3f").c_str(), r.error_mean, r.error_max,
+                r.reference ? "  (reference)" : "");
 }
 
 }  // namespace
@@ -81,11 +73,8 @@ void run_keyframe_study_command(const SceneOptions& scene_options, const Keyfram
   }
   release_frame(frame);
   const std::string name = std::filesystem::path(scene_options.path).stem().string();
-  const std::string csv = keyframe_study_csv(study);
-  cv::Mat plot;
-  if (!out.plot.empty()) plot = plot_keyframe_study(study, name);
-  write_file_atomic(out.csv, csv);
-  if (!out.plot.empty()) write_image(out.plot, plot);
+  write_study_files(out, keyframe_study_csv(study),
+                    [&] { return plot_keyframe_study(study, name); });
 
   std::printf(
       "%s: %dx%d, style %s, %d frames over %g degrees; reference: n = 1 (fresh blobs every "
@@ -93,8 +82,7 @@ void run_keyframe_study_command(const SceneOptions& scene_options, const Keyfram
       name.c_str(), study.width, study.height, study.style.c_str(), study.path.frames,
       double(study.path.degrees));
   print_table(study);
-  std::printf("wrote %s (%zu rows)%s%s\n", out.csv.c_str(), study.rows.size(),
-              out.plot.empty() ? "" : " and ", out.plot.c_str());
+  print_written(out, study.rows.size());
 }
 
 }  // namespace sylva::cli

@@ -41,6 +41,9 @@ void bind_ao_params(ParamSet& set, AoSettings& s) {
       "Hegeman Eq. 6 occluder density x size; auto = fitted to ray-traced AO");
   set.add_int("ao.shells", s.shells, 1, kMaxAoShells, "shells",
               "k of ao.model = hegeman-shells (k-means clusters of the foliage)");
+  set.add_choice("ao.solid_angle", s.solid_angle, {"exact", "paper"},
+                 "hegeman-*: the crown's solid angle darkening wood, ground and grass "
+                 "(Hegeman Eq. 7-8): exact or the paper's pi (r/d)^2");
   set.add_int("ao.rays", s.rays, 1, 4096, "rays per pixel", "rays of ao.model = raytraced");
 }
 
@@ -122,7 +125,24 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
   ao.model = ao_model_of(s.model);
   ao.constant = s.constant;
   if (ao.model != AoShading::Model::Shells) return ao;
+  if (s.solid_angle != "exact" && s.solid_angle != "paper")
+    throw InputError("ao.solid_angle", "must be exact or paper, got '" + s.solid_angle + "'");
   const std::vector<glm::vec3> points = foliage_vertices(scene);
+  Bounds grass;  // of the Role::Grass triangles (meshes without roles have none)
+  for (const Mesh& m : scene.meshes)
+    for (size_t t = 0; t < m.triangle_count() && t < m.roles.size(); ++t)
+      if (m.roles[t] == Role::Grass)
+        for (int k = 0; k < 3; ++k)
+          grass.extend(m.positions[m.indices[3 * t + size_t(k)]]);
+  auto finish = [&](AoShading out) {
+    out.exact_solid_angle = s.solid_angle == "exact";
+    if (!grass.empty()) {
+      out.grass_ground = grass.min.y;  // Hegeman et al. Eq. 9: P_z from the roots, h the field
+      out.grass_height = grass.max.y - grass.min.y;
+    }
+    return out;
+  };
+  if (points.empty() && !grass.empty()) return finish(ao);
   if (points.empty()) throw InputError("ao.model", "'" + s.model + "' needs foliage");
   AoShellFit fit;
   fit.ellipsoid = s.model != "hegeman-sphere";
@@ -152,7 +172,7 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
       throw InputError("ao.alpha_rho", "must be 'auto' or a number >= 0");
     fit.alpha_rho = float(v);
   }
-  return fit_ao_shading(points, fit);
+  return finish(fit_ao_shading(points, fit));
 }
 
 int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {

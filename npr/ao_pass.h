@@ -20,9 +20,11 @@ namespace sylva {
 // The ao.* preset keys as a user gives them.
 struct AoSettings {
   // none | constant | luft-density | hegeman-sphere | hegeman-ellipsoid | hegeman-shells |
-  // raytraced. none: no AO (the AO target is 1 on geometry, images unchanged). raytraced:
-  // the ao buffer only (a pass after the raster pass); the colour's ambient term is not
-  // darkened by it.
+  // raytraced. none: no AO (the AO target is 1 on geometry, images unchanged). hegeman-*:
+  // leaves by Hegeman et al. Eq. 4-6 in their shell; wood, ground and other geometry by the
+  // solid angle of the crown's bounding sphere (Eq. 7-8, core/gl/ao_shading.h); grass blades
+  // by Eq. 9 times that. raytraced: the ao buffer only (a pass after the raster pass); the
+  // colour's ambient term is not darkened by it.
   std::string model = "none";
   // constant: the visibility everywhere, [0, 1]. 0.6 is about the mean ray-traced visibility
   // of the sample crowns' leaves, so switching from hegeman-* keeps the overall tone.
@@ -32,10 +34,14 @@ struct AoSettings {
   // number >= 0 per scene unit cubed (npr/hegeman_ao.h).
   std::string alpha_rho = "auto";
   int shells = 4;  // hegeman-shells: k, [1, 64]
-  int rays = 64;   // raytraced: rays per pixel, [1, 4096]
+  // hegeman-*: the crown's solid angle that occludes non-foliage (Hegeman et al. Eq. 7-8):
+  // "exact" (default) 2 pi (1 - sqrt(1 - (r/d)^2)) or "paper" pi (r/d)^2 (Eq. 7).
+  std::string solid_angle = "exact";
+  int rays = 64;  // raytraced: rays per pixel, [1, 4096]
 };
 
-// Binds ao.model, ao.constant, ao.alpha_rho, ao.shells and ao.rays with their ranges.
+// Binds ao.model, ao.constant, ao.alpha_rho, ao.shells, ao.solid_angle and ao.rays with
+// their ranges.
 void bind_ao_params(ParamSet& set, AoSettings& s);
 // What the raster pass evaluates for the model (raytraced: None, the raster pass draws no
 // AO). Throws InputError("ao.model", ...) for an unknown model.
@@ -55,8 +61,11 @@ struct AoSetup {
 // What the AO node computes for `settings` (ao_model_of; for hegeman-*: the shells fitted to
 // the foliage vertices, k = 1 for sphere and ellipsoid, seeded by `seed`, and alpha_rho as
 // given or, for auto, fitted to ray-traced visibility (make_scene_tracer, 64 rays) at up to
-// 256 foliage-triangle centroids picked with `seed`). Throws InputError("ao.model", ...) for
-// hegeman-* on a scene without foliage.
+// 256 foliage-triangle centroids picked with `seed`); the crown sphere occluding the rest
+// (Eq. 7-8) is the foliage's bounding sphere, and grass (Role::Grass triangles, Eq. 9) has
+// its roots at their lowest y and the height of their extent in y. A scene with grass but no
+// foliage gets no shells and no crown (grass by Eq. 9 alone). Throws
+// InputError("ao.model", ...) for hegeman-* on a scene with neither foliage nor grass.
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& settings, uint64_t seed);
 
 // The foliage vertices (those of triangles with Role::Foliage), world space.

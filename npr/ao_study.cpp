@@ -465,29 +465,20 @@ cv::Mat plot_ao_study(const AoStudy& study, const std::string& scene_name, int w
   P.text(sub2, {width / 2, P.px(84)}, 0.48, kChartTextGrey, 0.5);
 
   const int rows = int(shown.size() + 3) / 4;
-  const int top = P.px(130), legend_h = P.px(40 + 26 * std::max(1, rows));
-  const int bottom = height - legend_h - P.px(62);
-  const int left = P.px(90), gap = P.px(100), right = P.px(30);
-  const int panel_w = (width - left - gap - right) / 2;
-  draw_chart_panel(P, {left, top, panel_w, bottom - top}, foliage, x_lo, x_hi, true);
-  draw_chart_panel(P, {left + panel_w + gap, top, panel_w, bottom - top}, other, x_lo, x_hi, false);
+  const ChartLayout layout = chart_two_panel_layout(P, rows);
+  draw_chart_panel(P, layout.left, foliage, x_lo, x_hi, true);
+  draw_chart_panel(P, layout.right, other, x_lo, x_hi, false);
 
   // Legend: four models per row.
   const int entry_w = P.px(230);
   const int x0 = std::max(P.px(20), (width - 4 * entry_w) / 2);
-  int y = height - legend_h + P.px(6);
-  for (size_t i = 0; i < shown.size(); ++i) {
-    const int x = x0 + int(i % 4) * entry_w;
-    const int yy = y + int(i / 4) * P.px(26);
-    cv::line(img, {x, yy - P.px(5)}, {x + P.px(36), yy - P.px(5)}, shown[i]->colour, P.px(2),
-             cv::LINE_AA);
-    P.marker(shown[i]->marker, {x + P.px(18), yy - P.px(5)}, shown[i]->colour, P.px(5));
-    P.text(shown[i]->model, {x + P.px(44), yy}, 0.48, kChartTextGrey);
-  }
-  const int ry = y + rows * P.px(26) + P.px(4);
-  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
-  P.text("the reference (zero error by definition);  small numbers: rays per pixel, k = shells",
-         {x0 + P.px(36), ry}, 0.45, kChartTextGrey);
+  const int y = layout.legend_y;
+  for (size_t i = 0; i < shown.size(); ++i)
+    draw_chart_legend_entry(P, {x0 + int(i % 4) * entry_w, y + int(i / 4) * P.px(26)},
+                            shown[i]->colour, shown[i]->marker, shown[i]->model);
+  draw_chart_reference_note(
+      P, {x0, y + rows * P.px(26) + P.px(4)},
+      "the reference (zero error by definition);  small numbers: rays per pixel, k = shells");
   return img;
 }
 

@@ -22,11 +22,11 @@ float fitted_alpha_rho(const Shells& shells, const AoShellFit& fit) {
   std::vector<glm::vec3> p, nr;
   for (size_t i = 0; i < std::min(n, kFitSamples); ++i) {
     const size_t j = n <= kFitSamples ? i : size_t(splitmix64(state) % n);
-    glm::vec3 normal = fit.sample_normals[j];
-    const Ellipsoid& e = shells.shells[shells.nearest(fit.sample_points[j])];
-    if (glm::dot(normal, fit.sample_points[j] - e.centre) < 0.0f) normal = -normal;
+    const glm::vec3 normal = fit.sample_normals[j];
     p.push_back(fit.sample_points[j]);
     nr.push_back(normal);
+    p.push_back(fit.sample_points[j]);
+    nr.push_back(-normal);
   }
   const std::vector<float> v = fit.trace(p, nr);
   SYLVA_CHECK(v.size() == p.size(), "AO tracer: one visibility per point");
@@ -40,7 +40,7 @@ float fitted_alpha_rho(const Shells& shells, const AoShellFit& fit) {
 
 }  // namespace
 
-AoShading ao_shading(const Shells& shells, float alpha_rho) {
+AoShading ao_shading(const Shells& shells, float alpha_rho, const Sphere& crown) {
   SYLVA_CHECK(!shells.shells.empty() && shells.shells.size() <= size_t(kMaxAoShells) &&
                   shells.anchors.size() == shells.shells.size(),
               "ao_shading: 1 to 64 shells with one anchor each");
@@ -61,6 +61,10 @@ AoShading ao_shading(const Shells& shells, float alpha_rho) {
     ao.transpose.push_back(solid ? glm::mat3(glm::transpose(l)) : glm::mat3(1.0f));
     ao.volume_scale.push_back(solid ? float(det) : 0.0f);
   }
+  if (!crown.empty() && std::isfinite(crown.radius)) {
+    ao.crown_centre = crown.centre;
+    ao.crown_radius = crown.radius;
+  }
   return ao;
 }
 
@@ -71,7 +75,7 @@ AoShading fit_ao_shading(const std::vector<glm::vec3>& foliage, const AoShellFit
   options.seed = fit.seed;
   const Shells shells = fit_shells(foliage, options);
   const float alpha_rho = fit.alpha_rho >= 0.0f ? fit.alpha_rho : fitted_alpha_rho(shells, fit);
-  return ao_shading(shells, alpha_rho);
+  return ao_shading(shells, alpha_rho, fit_bounding_sphere(foliage));
 }
 
 }  // namespace sylva

@@ -348,17 +348,12 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
   P.text(sub2, {width / 2, P.px(84)}, 0.48, kChartTextGrey, 0.5);
 
   // Two panels side by side; the legend below them.
-  const int top = P.px(130), legend_h = P.px(40 + 26 * std::max<size_t>(1, sources.size()));
-  const int bottom = height - legend_h - P.px(62);
-  const int left = P.px(90), gap = P.px(100), right = P.px(30);
-  const int panel_w = (width - left - gap - right) / 2;
-  const cv::Rect a1(left, top, panel_w, bottom - top);
-  const cv::Rect a2(left + panel_w + gap, top, panel_w, bottom - top);
-  draw_chart_panel(P, a1, normal_panel, x_lo, x_hi, true);
-  draw_chart_panel(P, a2, ka_panel, x_lo, x_hi, false);
+  const ChartLayout layout = chart_two_panel_layout(P, int(sources.size()));
+  draw_chart_panel(P, layout.left, normal_panel, x_lo, x_hi, true);
+  draw_chart_panel(P, layout.right, ka_panel, x_lo, x_hi, false);
 
   // Legend: one row per normal source, one entry per grid.
-  int y = height - legend_h + P.px(6);
+  int y = layout.legend_y;
   const int entry_w = P.px(190);
   const int x0 = std::max(P.px(20), (width - int(grids.size() + 1) * entry_w) / 2);
   for (NormalSource src : sources) {
@@ -368,20 +363,15 @@ cv::Mat plot_foliage_study(const FoliageStudy& study, const std::string& scene_n
     for (int grid : grids) {
       const double t = grids.size() > 1 ? double(gi) / double(grids.size() - 1) : 1.0;
       const int x = x0 + int(gi + 1) * entry_w;
-      const cv::Scalar c = shade(src, t);
-      cv::line(img, {x, y - P.px(5)}, {x + P.px(36), y - P.px(5)}, c, P.px(2), cv::LINE_AA);
-      P.marker(marker_of(src), {x + P.px(18), y - P.px(5)}, c, P.px(5));
-      P.text("grid " + std::to_string(grid), {x + P.px(44), y}, 0.48, kChartTextGrey);
+      draw_chart_legend_entry(P, {x, y}, shade(src, t), marker_of(src),
+                              "grid " + std::to_string(grid));
       ++gi;
     }
     y += P.px(26);
   }
-  const int ry = y + P.px(4);
-  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
-  P.text(
-      "the reference (zero error by definition);  small numbers: the share of leaves used as "
-      "generators (fraction)",
-      {x0 + P.px(36), ry}, 0.45, kChartTextGrey);
+  draw_chart_reference_note(P, {x0, y + P.px(4)},
+                            "the reference (zero error by definition);  small numbers: the share "
+                            "of leaves used as generators (fraction)");
   return img;
 }
 

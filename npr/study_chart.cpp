@@ -123,13 +123,32 @@ void draw_chart_panel(const ChartPainter& P, cv::Rect area, const ChartPanel& pa
     P.text(chart_tick_label(std::abs(v) < step * 1e-6 ? 0.0 : v), {area.x - P.px(8), y + P.px(5)},
            0.45, kChartTextGrey, 1.0);
   }
-  for (double v : chart_log_ticks(x_lo, x_hi)) {
+  // Tick labels that would touch one already drawn are left out: decades (1, 10, ...) first,
+  // then the rest from left to right.
+  const std::vector<double> ticks = chart_log_ticks(x_lo, x_hi);
+  std::vector<std::pair<int, int>> labelled;  // x extents of the drawn labels
+  auto label = [&](double v) {
+    const int x = X(v);
+    const std::string t = chart_tick_label(v);
+    const int half = P.text_size(t, 0.45).width / 2 + P.px(4);
+    for (const auto& [a, b] : labelled)
+      if (x - half < b && x + half > a) return;
+    labelled.emplace_back(x - half, x + half);
+    P.text(t, {x, area.y + area.height + P.px(22)}, 0.45, kChartTextGrey, 0.5);
+  };
+  auto decade = [](double v) {
+    const double e = std::log10(v);
+    return std::abs(e - std::round(e)) < 1e-9;
+  };
+  for (double v : ticks) {
     const int x = X(v);
     cv::line(P.img, {x, area.y}, {x, area.y + area.height}, kChartGridGrey, 1, cv::LINE_AA);
     cv::line(P.img, {x, area.y + area.height}, {x, area.y + area.height + P.px(5)}, kChartAxisGrey,
              1, cv::LINE_AA);
-    P.text(chart_tick_label(v), {x, area.y + area.height + P.px(22)}, 0.45, kChartTextGrey, 0.5);
+    if (decade(v)) label(v);
   }
+  for (double v : ticks)
+    if (!decade(v)) label(v);
   cv::rectangle(P.img, area, kChartAxisGrey, 1, cv::LINE_AA);
   P.text(panel.x_label, {area.x + area.width / 2, area.y + area.height + P.px(48)}, 0.5,
          kChartBlack, 0.5);
@@ -180,6 +199,32 @@ void draw_chart_panel(const ChartPainter& P, cv::Rect area, const ChartPanel& pa
     cv::circle(P.img, p, P.px(4), kChartBlack, cv::FILLED, cv::LINE_AA);
     P.text(panel.lone_label, {p.x, p.y - P.px(16)}, 0.42, kChartBlack, 0.5);
   }
+}
+
+ChartLayout chart_two_panel_layout(const ChartPainter& P, int legend_rows) {
+  const int width = P.img.cols, height = P.img.rows;
+  const int top = P.px(130), legend_h = P.px(40 + 26 * std::max(1, legend_rows));
+  const int bottom = height - legend_h - P.px(62);
+  const int left = P.px(90), gap = P.px(100), right = P.px(30);
+  const int panel_w = (width - left - gap - right) / 2;
+  ChartLayout layout;
+  layout.left = cv::Rect(left, top, panel_w, bottom - top);
+  layout.right = cv::Rect(left + panel_w + gap, top, panel_w, bottom - top);
+  layout.legend_y = height - legend_h + P.px(6);
+  return layout;
+}
+
+void draw_chart_legend_entry(const ChartPainter& P, cv::Point at, cv::Scalar colour,
+                             ChartMarker marker, const std::string& name) {
+  cv::line(P.img, {at.x, at.y - P.px(5)}, {at.x + P.px(36), at.y - P.px(5)}, colour, P.px(2),
+           cv::LINE_AA);
+  P.marker(marker, {at.x + P.px(18), at.y - P.px(5)}, colour, P.px(5));
+  P.text(name, {at.x + P.px(44), at.y}, 0.48, kChartTextGrey);
+}
+
+void draw_chart_reference_note(const ChartPainter& P, cv::Point at, const std::string& note) {
+  cv::circle(P.img, {at.x + P.px(18), at.y - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
+  P.text(note, {at.x + P.px(36), at.y}, 0.45, kChartTextGrey);
 }
 
 }  // namespace sylva

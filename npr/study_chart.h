@@ -72,4 +72,20 @@ struct ChartPanel {
 void draw_chart_panel(const ChartPainter& painter, cv::Rect area, const ChartPanel& panel,
                       double x_lo, double x_hi, bool first_panel);
 
+// The layout the study charts share: title lines above y = 130 (at 1200 x 800), two panels
+// side by side, and below them a legend of `legend_rows` rows (at least one) and a line for
+// the reference; `legend_y` is the baseline of its first row.
+struct ChartLayout {
+  cv::Rect left, right;
+  int legend_y = 0;
+};
+ChartLayout chart_two_panel_layout(const ChartPainter& painter, int legend_rows);
+
+// A legend entry at baseline `at`: a short line with the series' marker, then `name`.
+void draw_chart_legend_entry(const ChartPainter& painter, cv::Point at, cv::Scalar colour,
+                             ChartMarker marker, const std::string& name);
+
+// The reference's black ring and `note` after it, at baseline `at`.
+void draw_chart_reference_note(const ChartPainter& painter, cv::Point at, const std::string& note);
+
 }  // namespace sylva

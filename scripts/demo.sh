@@ -3,7 +3,7 @@
 # standard, expressive (Luft et al.), ink, toon, watercolor and blobs (Dudley) styles, a contact sheet of
 # every style per scene, their G-buffer previews, the normal buffers of Luft Fig. 7 (original,
 # realigned, realigned-scaled), a rho/tau sweep (Luft Fig. 3), toon with cast shadows, toon
-# and keyframed blob turntables (MP4), a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
+# and keyframed blob turntables (MP4), an ink turntable GIF, Hegeman AO on a ground plane and grass, a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
 set -euo pipefail
 sylva=$1
 out=$2
@@ -38,6 +38,9 @@ for kind in tree conifer; do
     --cache-dir "$out/cache" -q --report "$out/$kind-turntable-coherence.csv" \
     -o "$out/$kind-turntable-toon.mp4"
 done
+# A short looping GIF (one global palette) for web pages.
+"$sylva" turntable "$out/tree.glb" --style ink --frames 36 --size 320 --ssaa 2 \
+  --cache-dir "$out/cache" -q -o "$out/tree-turntable-ink.gif"
 # Dudley's blobs: 16 clusters, keyframes every 8 frames (the coherence CSV has the jitter).
 for kind in tree bush conifer; do
   "$sylva" render "$out/$kind.glb" --style blobs --clusters 16 --size 1024 --ssaa 2 \
@@ -46,6 +49,14 @@ for kind in tree bush conifer; do
     --keyframe-every 8 -q --report "$out/$kind-turntable-blobs-coherence.csv" \
     -o "$out/$kind-turntable-blobs.mp4"
 done
+# Hegeman et al.'s AO on a ground plane and a grass patch (Eq. 7-9): the AO buffers and renders.
+"$sylva" buffers "$out/tree.glb" --ground --elevation 35 --size 768 --buffers ao \
+  --set ao.model=hegeman-sphere --out-dir "$out/tree-ground-ao"
+"$sylva" render "$out/tree.glb" --ground --elevation 35 --size 1024 --ssaa 2 --ambient 0.8 \
+  --set ao.model=hegeman-sphere -o "$out/tree-ground-hegeman.png"
+"$sylva" sample grass -o "$out/grass.glb"
+"$sylva" buffers "$out/grass.glb" --elevation 30 --size 768 --buffers ao \
+  --set ao.model=hegeman-sphere --out-dir "$out/grass-ao"
 "$sylva" bake "$out/tree.glb" --cache-dir "$out/cache" -o "$out/tree-baked.glb"
 "$sylva" render "$out/tree-baked.glb" --size 1024 --ssaa 2 -o "$out/tree-baked-standard.png"
 "$sylva" tradeoff "$out/bush.glb" --study foliage --grids 32,64,128 -o "$out/bush-tradeoff.csv" \

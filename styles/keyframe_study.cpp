@@ -170,29 +170,19 @@ cv::Mat plot_keyframe_study(const KeyframeStudy& study, const std::string& scene
   P.text("flicker: mean |change| between consecutive frames;  time: render only, no file written",
          {width / 2, P.px(84)}, 0.48, kChartTextGrey, 0.5);
 
-  const int top = P.px(130), legend_h = P.px(40 + 26 * 2);
-  const int bottom = height - legend_h - P.px(62);
-  const int left = P.px(90), gap = P.px(100), right = P.px(30);
-  const int panel_w = (width - left - gap - right) / 2;
-  draw_chart_panel(P, {left, top, panel_w, bottom - top}, coherence, x_lo, x_hi, true);
-  draw_chart_panel(P, {left + panel_w + gap, top, panel_w, bottom - top}, time, x_lo, x_hi, false);
+  const ChartLayout layout = chart_two_panel_layout(P, 2);
+  draw_chart_panel(P, layout.left, coherence, x_lo, x_hi, true);
+  draw_chart_panel(P, layout.right, time, x_lo, x_hi, false);
 
   // Legend: two entries per row.
   const int entry_w = P.px(420);
   const int x0 = std::max(P.px(20), (width - 2 * entry_w) / 2);
-  const int y = height - legend_h + P.px(6);
-  for (size_t i = 0; i < std::size(looks); ++i) {
-    const int x = x0 + int(i % 2) * entry_w;
-    const int yy = y + int(i / 2) * P.px(26);
-    cv::line(img, {x, yy - P.px(5)}, {x + P.px(36), yy - P.px(5)}, looks[i].colour, P.px(2),
-             cv::LINE_AA);
-    P.marker(looks[i].marker, {x + P.px(18), yy - P.px(5)}, looks[i].colour, P.px(5));
-    P.text(looks[i].name, {x + P.px(44), yy}, 0.48, kChartTextGrey);
-  }
-  const int ry = y + 2 * P.px(26) + P.px(4);
-  cv::circle(img, {x0 + P.px(18), ry - P.px(5)}, P.px(9), kChartBlack, P.px(2), cv::LINE_AA);
-  P.text("the reference, n = 1 (zero difference by definition)", {x0 + P.px(36), ry}, 0.45,
-         kChartTextGrey);
+  const int y = layout.legend_y;
+  for (size_t i = 0; i < std::size(looks); ++i)
+    draw_chart_legend_entry(P, {x0 + int(i % 2) * entry_w, y + int(i / 2) * P.px(26)},
+                            looks[i].colour, looks[i].marker, looks[i].name);
+  draw_chart_reference_note(P, {x0, y + 2 * P.px(26) + P.px(4)},
+                            "the reference, n = 1 (zero difference by definition)");
   return img;
 }
 

@@ -20,10 +20,23 @@ struct AoShading {
   // transpose[i] * n (L^T for L = axes * diag(radii)); volume_scale[i] = |det L| (0 = a
   // shell without volume: visibility 1). A fragment uses the shell whose anchor is nearest
   // (lowest index on ties). At most kMaxAoShells.
+  // 0 shells: a scene without foliage (e.g. a grass patch), only the terms below apply.
   float alpha_rho = 0.0f;  // per scene unit cubed, >= 0
   std::vector<glm::vec3> centres, anchors;
   std::vector<glm::mat3> inverse, transpose;
   std::vector<float> volume_scale;
+  // Shells, fragments that are not foliage (wood, ground, other, grass): Hegeman et al.
+  // Eq. 7-8, V = 1 - A / (2 pi) with A the solid angle of the crown's sphere above the
+  // fragment's tangent plane, clamped inside the sphere, as npr/hegeman_ao.h's
+  // object_visibility with horizon clipping. crown_radius <= 0: no crown, V = 1.
+  glm::vec3 crown_centre{0.0f};
+  float crown_radius = 0.0f;  // scene units, finite
+  // true: the exact solid angle 2 pi (1 - sqrt(1 - (r/d)^2)); false: the paper's pi (r/d)^2.
+  bool exact_solid_angle = true;
+  // Shells, grass fragments (Role::Grass): Eq. 9 times the crown's occlusion, P_z = y -
+  // grass_ground clamped to [0, grass_height] (+Y up). grass_height <= 0: no grass term.
+  float grass_ground = 0.0f;  // y of the grass roots, scene units, finite
+  float grass_height = 0.0f;  // h, the grass field's height, scene units, finite
 };
 inline constexpr int kMaxAoShells = 64;
 

@@ -234,6 +234,11 @@ struct Rasterizer::Impl {
     glUniform1f(p.ao_alpha_rho, ao.alpha_rho);
     const int n = ao.model == AoShading::Model::Shells ? static_cast<int>(ao.centres.size()) : 0;
     glUniform1i(p.ao_shell_count, n);
+    const bool crown = ao.model == AoShading::Model::Shells && ao.crown_radius > 0.0f;
+    glUniform4f(p.ao_crown, ao.crown_centre.x, ao.crown_centre.y, ao.crown_centre.z,
+                crown ? ao.crown_radius : 0.0f);
+    glUniform1i(p.ao_exact_solid_angle, ao.exact_solid_angle ? 1 : 0);
+    glUniform2f(p.ao_grass, ao.grass_ground, ao.grass_height);
     if (n == 0) return;
     glUniform3fv(p.ao_centre, n, &ao.centres[0][0]);
     glUniform3fv(p.ao_anchor, n, &ao.anchors[0][0]);
@@ -396,10 +401,13 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   const AoShading& ao = request.ao;
   if (ao.model == AoShading::Model::Shells) {
     const size_t n = ao.centres.size();
-    SYLVA_CHECK(n >= 1 && n <= size_t(kMaxAoShells) && ao.anchors.size() == n &&
-                    ao.inverse.size() == n && ao.transpose.size() == n &&
-                    ao.volume_scale.size() == n,
-                "AO shells: 1 to 64 shells, each with centre, anchor, matrices and volume");
+    SYLVA_CHECK(n <= size_t(kMaxAoShells) && ao.anchors.size() == n && ao.inverse.size() == n &&
+                    ao.transpose.size() == n && ao.volume_scale.size() == n,
+                "AO shells: 0 to 64 shells, each with centre, anchor, matrices and volume");
+    SYLVA_CHECK(std::isfinite(ao.crown_centre.x) && std::isfinite(ao.crown_centre.y) &&
+                    std::isfinite(ao.crown_centre.z) && std::isfinite(ao.crown_radius) &&
+                    std::isfinite(ao.grass_ground) && std::isfinite(ao.grass_height),
+                "AO crown and grass uniforms must be finite");
   }
   if (!(ao.constant >= 0.0f && ao.constant <= 1.0f))
     throw InputError("ao.constant", "must be in [0, 1]");

@@ -92,6 +92,9 @@ uniform vec3 u_ao_anchor[64];
 uniform mat3 u_ao_inverse[64];    // L^-1: world -> the shell's unit ball
 uniform mat3 u_ao_transpose[64];  // L^T: world normal -> plane normal in the unit ball
 uniform float u_ao_volume_scale[64];  // |det L|
+uniform vec4 u_ao_crown;              // Eq. 7-8 occluder: centre, radius (<= 0: none)
+uniform int u_ao_exact_solid_angle;   // 1: 2 pi (1 - cos beta); 0: the paper's pi (r/d)^2
+uniform vec2 u_ao_grass;              // Eq. 9: y of the roots, field height h (<= 0: none)
 
 #ifdef OUT_COLOR
 layout(location = 0) out vec4 o_color;
@@ -137,6 +140,7 @@ vec3 surface_normal() {
 // Hegeman et al. Eq. 4-6 for the world point x with world normal n, as npr/hegeman_ao.cpp's
 // hegeman_visibility (ball_cap in the unit ball of the shell whose anchor is nearest).
 float hegeman_visibility(vec3 x, vec3 n) {
+  if (u_ao_shell_count <= 0) return 1.0;
   int s = 0;
   float best = 3.4e38;
   for (int i = 0; i < u_ao_shell_count; ++i) {
@@ -170,10 +174,76 @@ float hegeman_visibility(vec3 x, vec3 n) {
   return clamp(exp(-exponent), 0.0, 1.0);  // Eq. 6
 }
 
+const float kPi = 3.14159265358979;
+
+// The solid angle of a sphere with sin(half-angle) s, as npr/hegeman_ao.cpp's
+// sphere_solid_angle: Eq. 7 or the exact 2 pi (1 - cos beta) without cancellation.
+float sphere_solid_angle(float s, bool exact) {
+  return exact ? 2.0 * kPi * s * s / (1.0 + sqrt(max(0.0, 1.0 - s * s))) : kPi * s * s;
+}
+
+// cone_solid_angle_above_horizon of npr/hegeman_ao.cpp (Mazonka 2012).
+float cone_solid_angle_above_horizon(float beta, float gamma) {
+  beta = clamp(beta, 0.0, kPi / 2.0);
+  gamma = clamp(gamma, 0.0, kPi);
+  float sb = sin(beta), cb = cos(beta);
+  float full = 2.0 * kPi * sb * sb / (1.0 + cb);
+  if (gamma + beta <= kPi / 2.0) return full;
+  if (gamma - beta >= kPi / 2.0) return 0.0;
+  float sg = sin(gamma), cg = cos(gamma);
+  if (!(sg * sb > 0.0)) return cg > 0.0 ? full : 0.0;
+  float a1 = acos(clamp(cg / sb, -1.0, 1.0));
+  float a2 = acos(clamp(-cg * cb / (sg * sb), -1.0, 1.0));
+  return clamp(2.0 * (kPi - a1 - cb * a2), 0.0, full);
+}
+
+// Hegeman et al. Eq. 7-8 with horizon clipping, as npr/hegeman_ao.cpp's object_visibility:
+// the crown's sphere seen from x, clamped to its boundary value inside.
+float object_visibility(vec3 x, vec3 n) {
+  float r = u_ao_crown.w;
+  if (!(r > 0.0)) return 1.0;
+  vec3 to_centre = u_ao_crown.xyz - x;
+  float dist = length(to_centre);
+  float s = dist > r ? r / dist : 1.0;
+  float a = sphere_solid_angle(s, u_ao_exact_solid_angle != 0);
+  float n_len = length(n);
+  if (n_len > 0.0) {
+    float share = 0.5;  // x at the centre: no direction to the crown
+    if (dist > 0.0) {
+      float beta = dist > r ? asin(clamp(r / dist, 0.0, 1.0)) : kPi / 2.0;
+      float gamma = acos(clamp(dot(n / n_len, to_centre / dist), -1.0, 1.0));
+      float whole = sphere_solid_angle(sin(beta), true);
+      share = whole > 0.0 ? cone_solid_angle_above_horizon(beta, gamma) / whole : 0.0;
+    }
+    a *= clamp(share, 0.0, 1.0);
+  }
+  return clamp(1.0 - a / (2.0 * kPi), 0.0, 1.0);  // Eq. 8
+}
+
+// Hegeman et al. Eq. 9, as npr/hegeman_ao.cpp's grass_visibility with up = +Y.
+float grass_visibility(vec3 x, vec3 n) {
+  float h = u_ao_grass.y;
+  if (!(h > 0.0)) return 1.0;
+  float pz = clamp(x.y - u_ao_grass.x, 0.0, h);
+  float n_len = length(n);
+  float cos_theta = n_len > 0.0 ? clamp(n.y / n_len, -1.0, 1.0) : 0.0;
+  return clamp(pz / (2.0 * h) * (1.0 + cos_theta), 0.0, 1.0);
+}
+
+// Hegeman models: the crown's own leaves by their shell (Eq. 4-6); everything else by the
+// crown's solid angle (Eq. 7-8), grass blades also by their height (Eq. 9).
+float hegeman_model_visibility(vec3 x, vec3 n) {
+  if (v_role == 0u) return hegeman_visibility(x, n);  // Role::Foliage
+  float v = object_visibility(x, n);
+  if (v_role == 4u) v *= grass_visibility(x, n);  // Role::Grass
+  return clamp(v, 0.0, 1.0);
+}
+
 float ambient_visibility(vec3 n_view) {
   if (u_ao_model == 1) return u_ao_constant;
   if (u_ao_model == 2) return clamp(v_ka, 0.0, 1.0);
-  if (u_ao_model == 3) return hegeman_visibility(v_world_pos, transpose(mat3(u_view)) * n_view);
+  if (u_ao_model == 3)
+    return hegeman_model_visibility(v_world_pos, transpose(mat3(u_view)) * n_view);
   return 1.0;
 }
 
@@ -361,6 +431,9 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.ao_inverse = loc("u_ao_inverse");
   p.ao_transpose = loc("u_ao_transpose");
   p.ao_volume_scale = loc("u_ao_volume_scale");
+  p.ao_crown = loc("u_ao_crown");
+  p.ao_exact_solid_angle = loc("u_ao_exact_solid_angle");
+  p.ao_grass = loc("u_ao_grass");
   return p;
 }
 

@@ -1,16 +1,15 @@
 #include "core/io/image_io.h"
 
-#include <png.h>
-
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the enums only: the functions are in the plugin
 #include <vector>
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/codecs.h"
+#include "core/io/codecs_png.h"
 
 namespace sylva {
 
@@ -20,41 +19,7 @@ namespace {
 // its adaptive filtering at zlib level 6 took 57 ms of a 1024² ink render's 0.76 s. Level 3
 // without filters takes a seventh of that; line drawings (flat paper, runs of ink) come out
 // smaller, shaded renders about 15% larger.
-constexpr int kPngLevel = 3;
-
-void png_append(png_structp png, png_bytep data, png_size_t length) {
-  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
-  out->append(reinterpret_cast<const char*>(data), length);
-}
-
-void png_flush(png_structp) {}
-
-// libpng reports errors by longjmp: nothing in this frame needs a destructor. False on failure.
-bool encode_png_rows(const cv::Mat& image, std::string& out) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  if (!png) return false;
-  png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return false;
-  }
-  static constexpr int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                        PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
-  png_set_write_fn(png, &out, png_append, png_flush);
-  png_set_IHDR(png, info, png_uint_32(image.cols), png_uint_32(image.rows),
-               image.depth() == CV_16U ? 16 : 8, kColorTypes[image.channels() - 1],
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, kPngLevel);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
-  png_write_info(png, info);
-  if (image.channels() >= 3) png_set_bgr(png);  // OpenCV's channel order
-  if (image.depth() == CV_16U && std::endian::native == std::endian::little) png_set_swap(png);
-  for (int y = 0; y < image.rows; ++y)
-    png_write_row(png, const_cast<png_bytep>(image.ptr<png_byte>(y)));
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return true;
-}
+constexpr PngEncodeOptions kPngOptions = {3, false, false};
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -78,7 +43,7 @@ void write_image(const std::string& path, const cv::Mat& image) {
     SYLVA_CHECK(image.channels() >= 1 && image.channels() <= 4, "PNG needs 1 to 4 channels");
     std::string png;
     png.reserve(image.total() * image.elemSize() / 8);
-    if (!encode_png_rows(image, png)) throw InputError(path, "cannot encode image as .png");
+    if (!encode_png(image, kPngOptions, png)) throw InputError(path, "cannot encode image as .png");
     write_file_atomic(path, png);
     return;
   }
@@ -96,7 +61,7 @@ void write_image(const std::string& path, const cv::Mat& image) {
   std::vector<uchar> bytes;
   bool ok = false;
   try {
-    ok = cv::imencode(ext, image, bytes, params);
+    ok = codecs().encode(ext, image, bytes, params);
   } catch (const cv::Exception& e) {
     throw InputError(path, std::string("cannot encode image: ") + e.err);
   }
@@ -108,7 +73,7 @@ cv::Mat read_image(const std::string& path) {
   std::string bytes = read_file_bytes(path);
   cv::Mat img;
   try {
-    img = cv::imdecode(std::vector<uchar>(bytes.begin(), bytes.end()), cv::IMREAD_UNCHANGED);
+    img = decode_image(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size());
   } catch (const cv::Exception&) {
     img.release();
   }

@@ -35,6 +35,7 @@ bool named(const Scene& scene, const Mesh& mesh, std::initializer_list<std::stri
 }
 
 Role non_foliage_role(const Scene& scene, const Mesh& mesh) {
+  if (named(scene, mesh, {"grass", "lawn"})) return Role::Grass;
   if (named(scene, mesh, {"bark", "trunk", "branch", "wood", "stem"})) return Role::Wood;
   if (named(scene, mesh, {"ground", "terrain", "soil"})) return Role::Ground;
   return Role::Other;

@@ -1,8 +1,9 @@
 // Foliage detection: which triangles are leaves. Rules, in order: an explicit --foliage
 // value ("none", "all", or a case-insensitive glob on material/mesh names); else material or
 // mesh names containing leaf/leaves/foliage/needle (case-insensitive); else meshes whose
-// material is alpha MASK. Everything else is wood if named like bark/trunk/branch/wood/stem,
-// ground if named ground/terrain/soil, other otherwise. Writes Scene::report.foliage_*.
+// material is alpha MASK. Everything else is grass if named grass/lawn (Hegeman et al.
+// Eq. 9 blades), wood if named like bark/trunk/branch/wood/stem, ground if named
+// ground/terrain/soil, other otherwise. Writes Scene::report.foliage_*.
 #pragma once
 
 #include <string>

@@ -50,6 +50,7 @@ Role parse_role(const Json& extras, bool& found) {
   if (r == "foliage") return Role::Foliage;
   if (r == "wood") return Role::Wood;
   if (r == "ground") return Role::Ground;
+  if (r == "grass") return Role::Grass;
   if (r != "other") found = false;
   return Role::Other;
 }

@@ -17,8 +17,8 @@ namespace sylva {
 
 // Meshes get the glTF mesh name (else the node name, else "mesh<i>"), with "[k]" appended
 // for primitive k when a mesh has several. Mesh::roles is filled only for primitives whose
-// primitive or mesh extras carry "sylva_role" ("foliage", "wood", "ground", "other");
-// otherwise it is left empty. primitive_ids and cluster_ids are left empty.
+// primitive or mesh extras carry "sylva_role" ("foliage", "wood", "ground", "other",
+// "grass"); otherwise it is left empty. primitive_ids and cluster_ids are left empty.
 Scene read_gltf(const std::string& path);
 
 }  // namespace sylva

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <type_traits>
 
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/codecs_png.h"
 #include "core/scene/glb_container.h"
 
 namespace sylva {
@@ -92,10 +92,10 @@ std::string encode_png(const Texture& tex, const std::string& path) {
     rgba = cv::Mat(1, 1, CV_8UC4, cv::Scalar(255, 255, 255, 255));  // keeps indices valid
   cv::Mat bgra;
   cv::cvtColor(rgba, bgra, cv::COLOR_RGBA2BGRA);
-  std::vector<uint8_t> png;
-  if (!cv::imencode(".png", bgra, png))
+  std::string png;  // libpng with cv::imencode's settings: the same bytes, no codecs plugin
+  if (!sylva::encode_png(bgra, kOpenCvPng, png))
     throw InputError(path, "cannot write: PNG encoding of texture '" + tex.name + "' failed");
-  return std::string(png.begin(), png.end());
+  return png;
 }
 
 Json material_json(const Material& m) {

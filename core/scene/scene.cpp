@@ -15,6 +15,8 @@ const char* role_name(Role r) {
       return "ground";
     case Role::Other:
       return "other";
+    case Role::Grass:
+      return "grass";
   }
   return "other";
 }
@@ -40,16 +42,34 @@ Bounds Scene::bounds() const {
 }
 
 Sphere Scene::framing_sphere() const {
-  const Bounds b = bounds();
+  // Triangles without a role count as framed (Role::Other).
+  auto framed = [](const Mesh& m, size_t t, bool skip_ground) {
+    return !skip_ground || t >= m.roles.size() || m.roles[t] != Role::Ground;
+  };
+  bool skip_ground = false;
+  for (const Mesh& m : meshes)
+    for (size_t t = 0; t < m.triangle_count() && !skip_ground; ++t)
+      skip_ground = t < m.roles.size() && m.roles[t] != Role::Ground;
+  if (!skip_ground)
+    for (const Mesh& m : meshes)
+      skip_ground = skip_ground || (m.roles.empty() && !m.indices.empty());
+  Bounds b;
+  for (const Mesh& m : meshes)
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      if (framed(m, t, skip_ground))
+        for (int k = 0; k < 3; ++k)
+          b.extend(m.positions[m.indices[3 * t + size_t(k)]]);
   Sphere s;
   if (b.empty()) return s;
   s.centre = b.center();
   float r2 = 0.0f;
   for (const Mesh& m : meshes)
-    for (uint32_t i : m.indices) {
-      const glm::vec3 d = m.positions[i] - s.centre;
-      r2 = std::max(r2, glm::dot(d, d));
-    }
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      if (framed(m, t, skip_ground))
+        for (int k = 0; k < 3; ++k) {
+          const glm::vec3 d = m.positions[m.indices[3 * t + size_t(k)]] - s.centre;
+          r2 = std::max(r2, glm::dot(d, d));
+        }
   s.radius = std::sqrt(r2);
   return s;
 }

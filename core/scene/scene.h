@@ -11,8 +11,10 @@
 namespace sylva {
 
 // What a triangle is. Foliage is what the Luft preprocessing and the blob/watercolor
-// layers work on; wood darkens under the crown; ground receives crown occlusion.
-enum class Role : uint8_t { Foliage = 0, Wood = 1, Ground = 2, Other = 3 };
+// layers work on; wood, ground and other geometry receive the crown's occlusion (Hegeman et
+// al. Eq. 7-8); grass blades see the sky by their height (Eq. 9) times that occlusion.
+enum class Role : uint8_t { Foliage = 0, Wood = 1, Ground = 2, Other = 3, Grass = 4 };
+inline constexpr int kRoleCount = 5;
 const char* role_name(Role r);
 
 enum class AlphaMode : uint8_t { Opaque = 0, Mask = 1, Blend = 2 };
@@ -109,8 +111,10 @@ struct Scene {
 
   Bounds bounds() const;
   Bounds bounds(Role role) const;  // bounds of the triangles with this role
-  // Centred on bounds().center(), radius = farthest used vertex: never larger than the box's
-  // circumscribed sphere and, for a tall tree, noticeably tighter.
+  // Centred on the bounds' centre, radius = farthest used vertex: never larger than the box's
+  // circumscribed sphere and, for a tall tree, noticeably tighter. Ground triangles
+  // (Role::Ground) are left out when there is anything else, so a ground plane (e.g.
+  // `--ground`, a few times the plant's size) does not shrink the plant in the frame.
   Sphere framing_sphere() const;
   size_t triangle_count() const;
   size_t vertex_count() const;

@@ -1,14 +1,15 @@
 // Decoding an encoded image (PNG, JPEG, any bit depth, 1-4 channels) from memory into the
 // scene's 8-bit RGBA Texture: 16-bit is scaled down, grey/RGB get an opaque alpha. Bad data
-// throws InputError(path, "<what>: cannot decode ..."). Used by gltf_read.cpp; header-only
-// so it needs no build entry of its own.
+// throws InputError(path, "<what>: cannot decode ..."). PNG is decoded by libpng in process,
+// JPEG by the codecs plugin (core/io/codecs.h). Used by gltf_read.cpp; header-only so it needs
+// no build entry of its own.
 #pragma once
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "core/error.h"
+#include "core/io/codecs.h"
 #include "core/scene/scene.h"
 
 namespace sylva {
@@ -19,8 +20,7 @@ inline Texture decode_texture(const unsigned char* bytes, size_t size, const std
   cv::Mat m;
   if (bytes && size > 0 && size < size_t(1) << 31) {
     try {
-      const cv::Mat encoded(1, int(size), CV_8U, const_cast<unsigned char*>(bytes));
-      m = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+      m = decode_image(bytes, size);
     } catch (const cv::Exception&) {
       m = cv::Mat();
     }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "tests/test_support.h"
 
 namespace sylva::test {
@@ -15,14 +17,18 @@ void expect_input_error(const std::string& args, const std::string& needle) {
       << "expected '" << needle << "' in " << r.output;
 }
 
+const std::string& sampled_scene(const std::string& tag, const std::string& args) {
+  static std::map<std::string, std::string> paths;  // tag -> .glb; map references stay valid
+  auto it = paths.find(tag);
+  if (it != paths.end()) return it->second;
+  std::string p = temp_dir(tag) + "/" + tag + ".glb";
+  RunResult r = run_sylva("sample " + args + " -o " + p);
+  EXPECT_EQ(r.status, 0) << r.output;
+  return paths.emplace(tag, p).first->second;
+}
+
 const std::string& small_tree() {
-  static std::string path = [] {
-    std::string p = temp_dir("tree") + "/tree.glb";
-    RunResult r = run_sylva("sample tree --leaves 2000 --seed 3 -o " + p);
-    EXPECT_EQ(r.status, 0) << r.output;
-    return p;
-  }();
-  return path;
+  return sampled_scene("tree", "tree --leaves 2000 --seed 3");
 }
 
 }  // namespace sylva::test

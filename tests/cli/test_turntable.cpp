@@ -1,9 +1,11 @@
-// sylva turntable end to end: PNG frames and MP4, slices equal to the full run byte for
+// sylva turntable end to end: PNG frames, MP4 and GIF, slices equal to the full run byte for
 // byte, resume after lost frames, the coherence report, and bad input (exit 2, nothing
 // written).
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "tests/cli/cli_support.h"
 #include "tests/test_support.h"
@@ -115,6 +117,32 @@ TEST(Turntable, WritesAnMp4) {
   EXPECT_EQ(probe.output, "64,64,5\n");
 }
 
+// A GIF: every frame, the size, one global palette; its frames match the PNG frames of the
+// same turntable within a level or two (the palette has 256 colours).
+TEST(Turntable, WritesAGifMatchingThePngFrames) {
+  const std::string dir = temp_dir("turntable-gif");
+  const std::string args = "turntable " + small_tree() + " --style toon --frames 5 --size 64 -q ";
+  const RunResult r = run_sylva(args + "-o " + dir + "/t.gif");
+  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(run_sylva(args + "-o " + dir + "/png/").status, 0);
+  EXPECT_EQ(listing(dir), (std::vector<std::string>{"png", "t.gif"}));  // no temporary left
+  const RunResult probe = run_sylva(
+      "--version >/dev/null && ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height -of csv=p=0 " +
+      dir + "/t.gif && ffmpeg -v error -i " + dir + "/t.gif -vf 'select=eq(n\\,3)' -frames:v 1 " +
+      dir + "/f3.png");
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_EQ(probe.output, "64,64,5\n");
+  const cv::Mat gif = cv::imread(dir + "/f3.png", cv::IMREAD_COLOR);
+  const cv::Mat png = cv::imread(dir + "/png/frame-00003.png", cv::IMREAD_COLOR);
+  ASSERT_EQ(gif.size(), png.size());
+  cv::Mat diff;
+  cv::absdiff(gif, png, diff);
+  EXPECT_LT(cv::mean(diff)[0], 2.0);
+  EXPECT_GT(cv::norm(png, cv::imread(dir + "/png/frame-00000.png", cv::IMREAD_COLOR), cv::NORM_L1),
+            0.0);  // the frames differ, so frame 3 was picked out
+}
+
 TEST(Turntable, BadInputExitsTwoAndWritesNothing) {
   const std::string dir = temp_dir("turntable-bad");
   const std::string base = "turntable " + small_tree() + " --size 32 ";
@@ -126,7 +154,11 @@ TEST(Turntable, BadInputExitsTwoAndWritesNothing) {
   expect_input_error(base + "--frames 4 --frame-range 3:2 -o " + dir + "/a/", "--frame-range");
   expect_input_error(base + "--frame-range 0:2 -o " + dir + "/a.mp4", "--frame-range");
   expect_input_error(base + "--resume -o " + dir + "/a.mp4", "--resume");
-  expect_input_error(base + "-o " + dir + "/a.gif", "--output");
+  expect_input_error(base + "-o " + dir + "/a.avi", "--output");
+  expect_input_error(base + "--frame-range 0:2 -o " + dir + "/a.gif", "--frame-range");
+  // 4096 x 4096 x 3 bytes x 50 frames = 2.4 GB of frames: more than a GIF may hold in memory.
+  expect_input_error("turntable " + small_tree() + " --size 4096 --frames 50 -o " + dir + "/a.gif",
+                     "--output");
   expect_input_error(base + "--report " + dir + "/r.txt -o " + dir + "/a/", "--report");
   expect_input_error(base + "--style ink --set edges.width=0 -o " + dir + "/a/", "edges.width");
   expect_input_error(base + "-o " + dir + "/missing/deeper/", "--output");

@@ -1,9 +1,10 @@
 // Benchmarks for the styles (issue "Styles"): one frame of each built-in preset at 1024² on
 // the 100k-leaf sample tree, through the render graph as `sylva render` builds it (raster
 // pass + the style's image passes), against the bare raster pass (colour only) of the same
-// scene. The Luft preprocessing is scene-level and cached (npr/foliage_cache.h), so it is
-// computed once outside the timed loop. Reports medians (run with --benchmark_repetitions);
-// the cost ratios to the bare raster pass are worked out from them.
+// scene; toon also with cast shadows (its shadow-map pass included). The Luft preprocessing is
+// scene-level and cached (npr/foliage_cache.h), so it is computed once outside the timed loop.
+// Reports medians (run with --benchmark_repetitions); the cost ratios to the bare raster pass are
+// worked out from them.
 //
 // The same for the ink style on a small alpha-card tree (`sylva sample tree --leaves 4200`,
 // 25,013 triangles, loaded back from a .glb as the command does): one frame (BM_CardTree), and
@@ -105,24 +106,35 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.view = setup.camera.view;
   context.background = setup.request.background;
   context.foliage_diagonal = r.scene.bounds(Role::Foliage).diagonal();
+  context.rasterizer = r.raster.get();  // toon.cast_shadows renders the key light's shadow map
+  context.scene_sphere = r.scene.framing_sphere();
+  context.camera = setup.camera;
   const int out = name == "raster" ? gb.color : style.build(graph, gb, context);
   graph.present(out);
   graph.execute();
   benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
 }
 
-const char* const kStyles[] = {"raster", "standard", "expressive", "ink", "toon", "watercolor"};
+const char* const kStyles[] = {"raster", "standard",   "expressive",  "ink",
+                               "toon",   "watercolor", "toon-shadows"};
+
+// "toon-shadows": toon with toon.cast_shadows (a shadow map from the key light each frame).
+Style make_style(const std::string& name) {
+  if (name == "raster") return Style("standard");
+  if (name == "toon-shadows") return Style("toon", {"toon.cast_shadows=true"});
+  return Style(name);
+}
 
 void BM_Style(benchmark::State& state) {
   Rig& r = rig();
   const std::string name = kStyles[state.range(0)];
   state.SetLabel(name);
-  const Style style(name == "raster" ? "standard" : name);
+  const Style style = make_style(name);
   for (auto _ : state)
     render_frame(r, name, style);
 }
 BENCHMARK(BM_Style)
-    ->DenseRange(0, 5)
+    ->DenseRange(0, 6)
     ->ArgName("style")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

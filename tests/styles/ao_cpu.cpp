@@ -19,7 +19,11 @@ CpuAo make_cpu_ao(const std::vector<glm::vec3>& points, bool ellipsoid, int k,
   const float volume = 4.0f / 3.0f * std::numbers::pi_v<float> * e.radii.x * e.radii.y * e.radii.z;
   const float alpha_rho = exponent_at_centre / volume;
   CpuAo out;
-  out.uniforms = ao_shading(*shells, alpha_rho);
+  const Sphere crown = fit_bounding_sphere(points);
+  out.uniforms = ao_shading(*shells, alpha_rho, crown);
+  out.object = [crown](const glm::vec3& x, const glm::vec3& n) {
+    return object_visibility(crown, x, n);
+  };
   out.visibility = [shells, alpha_rho](const glm::vec3& x, const glm::vec3& n) {
     return hegeman_visibility(*shells, x, n, alpha_rho);
   };

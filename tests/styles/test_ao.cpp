@@ -1,5 +1,6 @@
 // Ambient occlusion in the raster pass and the styles (npr/ao_pass.h): the shader's Hegeman
-// visibility against npr/hegeman_ao.h at the pixels' positions and normals, the AO target's
+// visibility against npr/hegeman_ao.h at the pixels' positions and normals (leaves: Eq. 4-6;
+// bark: the crown's Eq. 7-8, see also test_ao_objects.cpp), the AO target's
 // range and background, culling with ao.model = none, the ray-traced pass, and ao.* checks.
 #include <gtest/gtest.h>
 
@@ -50,7 +51,8 @@ TEST(Ao, ShaderMatchesHegemanVisibilityOnTheCpu) {
     const test::CpuAo cpu = test::make_cpu_ao(points, c.ellipsoid, c.k, 3.0f);
     const std::vector<glm::vec3>& anchors = cpu.uniforms.anchors;
     RasterRequest request;
-    request.targets = Target::Ao | Target::Position | Target::Normal | Target::Depth;
+    request.targets = Target::Ao | Target::Position | Target::Normal | Target::Depth | Target::Id;
+    request.id_kind = IdKind::Object;  // mesh 0 (object 1) is the leaves, mesh 1 the bark
     request.ao = cpu.uniforms;
     const GBuffer g = rig.raster->render(rig.rs.camera, rig.rs.lighting, request);
     expect_ao_range(g);
@@ -69,8 +71,10 @@ TEST(Ao, ShaderMatchesHegemanVisibilityOnTheCpu) {
         for (const glm::vec3& a : anchors)
           d.push_back(glm::length(wp - a));
         std::sort(d.begin(), d.end());
-        if (d.size() > 1 && d[1] - d[0] < 1e-3f * d[1]) continue;
-        const float v = cpu.visibility(wp, wn);
+        const bool leaf = g.id.at<int>(y, x) == 1;
+        if (leaf && d.size() > 1 && d[1] - d[0] < 1e-3f * d[1]) continue;
+        // Leaves: Eq. 4-6 in their shell; the bark: the crown's solid angle (Eq. 7-8).
+        const float v = leaf ? cpu.visibility(wp, wn) : cpu.object(wp, wn);
         max_diff = std::max(max_diff, double(std::abs(v - g.ao.at<float>(y, x))));
         lo = std::min(lo, g.ao.at<float>(y, x));
         ++compared;

@@ -1,0 +1,65 @@
+#include "cli/video_out.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/io/codecs.h"
+
+namespace fs = std::filesystem;
+
+namespace sylva::cli {
+
+struct VideoOut::Impl {
+  const CodecsApi& api = codecs();
+  std::string path, temp;
+  void* writer = nullptr;  // a cv::VideoWriter in the plugin
+  bool done = false;
+
+  Impl() = default;
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  ~Impl() { close(); }
+  void close() {  // releases the writer, which finishes the file
+    if (writer) api.video_close(writer);
+    writer = nullptr;
+  }
+};
+
+VideoOut::VideoOut(const std::string& path, double fps, cv::Size size)
+    : m_impl(std::make_unique<Impl>()) {
+  m_impl->path = path;
+  const fs::path p(path);
+  std::string name = ".";  // built by appending: `"." + string&&` trips GCC 12's -Wrestrict
+  name += p.stem().string();
+  name += ".partial-" + std::to_string(getpid()) + ".mp4";
+  m_impl->temp = (p.parent_path() / name).string();
+  for (const char* codec : {"avc1", "mp4v"}) {
+    m_impl->writer = m_impl->api.video_open(m_impl->temp, codec, fps, size);
+    if (m_impl->writer) return;
+  }
+  throw InputError("--output", "cannot open an MP4 writer for '" + path + "' (FFmpeg)");
+}
+
+VideoOut::~VideoOut() {
+  if (!m_impl->done) {
+    m_impl->close();
+    std::error_code ec;
+    fs::remove(m_impl->temp, ec);
+  }
+}
+
+void VideoOut::write(const cv::Mat& bgr) {
+  m_impl->api.video_write(m_impl->writer, bgr);
+}
+
+void VideoOut::finish() {
+  m_impl->close();
+  std::error_code ec;
+  fs::rename(m_impl->temp, m_impl->path, ec);
+  if (ec) throw InputError("--output", "cannot write '" + m_impl->path + "': " + ec.message());
+  m_impl->done = true;
+}
+
+}  // namespace sylva::cli

@@ -1,0 +1,90 @@
+// Loading the sylva_codecs plugin on first use; see codecs.h.
+#include "core/io/codecs.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>  // the enums only: the functions are in the plugin
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/io/codecs_png.h"
+
+namespace sylva {
+
+namespace {
+
+constexpr const char* kPluginName = "libsylva_codecs.so";
+
+struct Loaded {
+  const CodecsApi* api = nullptr;
+  std::string error;  // why it did not load, when api is null
+};
+
+// Where to look, in order: $SYLVA_CODECS (an explicit choice wins), beside the executable,
+// then SYLVA_CODECS_BUILD_PATH, the module's path in the build tree compiled in by
+// core/CMakeLists.txt, so the tests find it from their own folders.
+std::vector<std::string> candidates() {
+  std::vector<std::string> paths;
+  if (const char* env = std::getenv("SYLVA_CODECS"); env && *env) paths.push_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) paths.push_back((exe.parent_path() / kPluginName).string());
+#ifdef SYLVA_CODECS_BUILD_PATH
+  if (std::find(paths.begin(), paths.end(), SYLVA_CODECS_BUILD_PATH) == paths.end())
+    paths.push_back(SYLVA_CODECS_BUILD_PATH);
+#endif
+  return paths;
+}
+
+Loaded load() {
+  Loaded out;
+  std::string tried;
+  for (const std::string& path : candidates()) {
+    // Never closed: OpenCV keeps global state (backends, thread pools) until exit.
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      const char* why = dlerror();
+      tried += "; " + std::string(why ? why : path + ": dlopen failed");
+      continue;
+    }
+    using Entry = const CodecsApi* (*)();
+    auto entry = reinterpret_cast<Entry>(dlsym(handle, kCodecsApiSymbol));
+    const CodecsApi* api = entry ? entry() : nullptr;
+    if (api && api->version == kCodecsApiVersion) {
+      out.api = api;
+      return out;
+    }
+    tried += "; " + path + ": " +
+             (entry ? "built for another version of sylva" : std::string("no ") + kCodecsApiSymbol);
+  }
+  // One line, as main() prints it: "sylva: failed: cannot load ...".
+  out.error = std::string("cannot load the codecs plugin ") + kPluginName +
+              " (needed for images other than PNG and for video; set SYLVA_CODECS to its path)" +
+              tried;
+  return out;
+}
+
+}  // namespace
+
+const CodecsApi& codecs() {
+  static std::once_flag once;
+  static Loaded loaded;
+  std::call_once(once, [] { loaded = load(); });
+  if (!loaded.api) throw std::runtime_error(loaded.error);
+  return *loaded.api;
+}
+
+cv::Mat decode_image(const unsigned char* bytes, size_t size) {
+  if (!bytes || size == 0 || size >= size_t(1) << 31) return cv::Mat();
+  if (is_png(bytes, size)) return decode_png(bytes, size);
+  const cv::Mat encoded(1, int(size), CV_8U, const_cast<unsigned char*>(bytes));
+  return codecs().decode(encoded, cv::IMREAD_UNCHANGED);
+}
+
+}  // namespace sylva

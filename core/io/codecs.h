@@ -1,0 +1,23 @@
+// Image and video codecs outside PNG. OpenCV's imgcodecs and videoio live in the sylva_codecs
+// plugin (core/io/codecs_api.h says why), dlopen()ed on the first call that needs them; PNG
+// stays in process through libpng (core/io/codecs_png.h).
+#pragma once
+
+#include <cstddef>
+#include <opencv2/core.hpp>
+
+#include "core/io/codecs_api.h"
+
+namespace sylva {
+
+// The plugin's entry points, loaded once (thread-safe). The plugin is looked for next to the
+// executable (dirname of /proc/self/exe), then where this build put it, then at $SYLVA_CODECS.
+// Throws std::runtime_error naming every path tried and dlerror() when none loads.
+const CodecsApi& codecs();
+
+// cv::imdecode(bytes, cv::IMREAD_UNCHANGED): PNG by libpng in process, any other format by the
+// plugin. An empty Mat when the data cannot be decoded; may throw cv::Exception as imdecode
+// does, and std::runtime_error when a non-PNG needs the plugin and it does not load.
+cv::Mat decode_image(const unsigned char* bytes, size_t size);
+
+}  // namespace sylva

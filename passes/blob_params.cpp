@@ -1,0 +1,130 @@
+// The blobs passes' parameters (blobs.* keys, ranges, checks) and their wiring into the render
+// graph (passes/blobs.h); the painting itself is passes/blobs.cpp.
+#include <cmath>
+
+#include "core/error.h"
+#include "passes/blobs.h"
+#include "passes/pass_common.h"
+
+namespace sylva {
+
+void bind_blob_params(ParamSet& set, BlobParams& p) {
+  set.add_int("blobs.control_points", p.control_points, 3, 512, "",
+              "control points of each blob's shrink-wrapped outline (Dudley §4.2.1)");
+  set.add_float("blobs.step", p.step, 0.0, 1.0, "",
+                "fraction of the way to the centre a control point moves per shrink-wrap step",
+                true);
+  set.add_float("blobs.gap", p.gap, 0.0, 128.0, "px at 1024 px",
+                "gaps between a cluster's leaves closed before shrink-wrapping; 0 = none");
+  set.add_choice("blobs.outlines", p.outlines, {"visible", "alone"},
+                 "outline each cluster's visible leaves (one raster pass), or each cluster "
+                 "rasterised alone, hidden leaves included (one pass per cluster)");
+  set.add_int("blobs.peaks", p.peaks, 1, 16, "", "Gaussian peaks of each blob's height field");
+  set.add_float("blobs.peak_height", p.peak_height, 0.0, 2.0, "of the blob width",
+                "peak height: 0 flat, 1 as high as the blob is wide");
+  set.add_choice("blobs.blend_light", p.blend_light, {"directional", "point"},
+                 "the blend light whose brightness mixes wash (bright) and leaf detail (dark)");
+  set.add_float("blobs.blend_right", p.blend_right, -10.0, 10.0, "of the view distance",
+                "blend light position along the camera's right vector");
+  set.add_float("blobs.blend_up", p.blend_up, -10.0, 10.0, "of the view distance",
+                "blend light position along the camera's up vector");
+  set.add_float("blobs.blend_ambient", p.blend_ambient, 0.0, 1.0, "",
+                "blend light ambient strength (more = less detail everywhere)");
+  set.add_float("blobs.blend_diffuse", p.blend_diffuse, 0.0, 2.0, "",
+                "blend light diffuse strength (more = less detail on the lit side)");
+  set.add_bool("blobs.silhouettes", p.silhouettes,
+               "leaf silhouettes in the detail, found by the edges.* settings");
+  set.add_float("blobs.silhouette_tone", p.silhouette_tone, 0.0, 10.0, "x unlit blob colour",
+                "leaf silhouette colour: 0 black, 1 the blob colour, 10 white");
+  set.add_float("blobs.edge_width", p.edge_width, 0.0, 32.0, "px at 1024 px",
+                "width of the outline inside each blob; 0 = none");
+  set.add_float("blobs.edge_left", p.edge_left, 0.0, 4.0, "",
+                "extra outline width where the edge lies to the left (x (1 + edge_left))");
+  set.add_float("blobs.edge_tone", p.edge_tone, 0.0, 10.0, "x lit wash",
+                "outline colour: 0 black, 1 the lit wash");
+  set.add_float("blobs.translucency", p.translucency, 0.0, 1.0, "",
+                "how much of what lies behind shows through a blob");
+  set.add_float("blobs.variation", p.variation, 0.0, 0.5, "",
+                "per-blob brightness variation (wash x (1 +- variation)), seeded");
+  set.add_int("blobs.seed", p.seed, 0, 2147483647, "", "seed of the per-blob variation");
+}
+
+void validate_blob_params(const BlobParams& p) {
+  ParamSet set;
+  BlobParams copy;
+  bind_blob_params(set, copy);
+  // Re-setting every value through the bound set applies the same range checks as a preset.
+  set.set_number("blobs.control_points", p.control_points, "blobs.control_points");
+  set.set_number("blobs.step", p.step, "blobs.step");
+  set.set_number("blobs.gap", p.gap, "blobs.gap");
+  set.set_text("blobs.outlines", p.outlines, "blobs.outlines");
+  set.set_number("blobs.peaks", p.peaks, "blobs.peaks");
+  set.set_number("blobs.peak_height", p.peak_height, "blobs.peak_height");
+  set.set_text("blobs.blend_light", p.blend_light, "blobs.blend_light");
+  set.set_number("blobs.blend_right", p.blend_right, "blobs.blend_right");
+  set.set_number("blobs.blend_up", p.blend_up, "blobs.blend_up");
+  set.set_number("blobs.blend_ambient", p.blend_ambient, "blobs.blend_ambient");
+  set.set_number("blobs.blend_diffuse", p.blend_diffuse, "blobs.blend_diffuse");
+  set.set_number("blobs.silhouette_tone", p.silhouette_tone, "blobs.silhouette_tone");
+  set.set_number("blobs.edge_width", p.edge_width, "blobs.edge_width");
+  set.set_number("blobs.edge_left", p.edge_left, "blobs.edge_left");
+  set.set_number("blobs.edge_tone", p.edge_tone, "blobs.edge_tone");
+  set.set_number("blobs.translucency", p.translucency, "blobs.translucency");
+  set.set_number("blobs.variation", p.variation, "blobs.variation");
+  set.set_number("blobs.seed", p.seed, "blobs.seed");
+}
+
+bool blob_needs_position(const Lighting& lighting, const BlobParams& p) {
+  if (p.blend_light == "point") return true;
+  for (const Light& l : lighting.lights)
+    if (l.type == Light::Type::Point) return true;
+  return false;
+}
+
+ShrinkWrapParams blob_shrink_wrap(const BlobParams& p) {
+  ShrinkWrapParams sw;
+  sw.control_points = p.control_points;
+  sw.step = p.step;
+  return sw;
+}
+
+float blob_gap_radius(const BlobParams& p, const cv::Size& size) {
+  // blobs.gap is a diameter at the reference size; close_gaps takes a radius.
+  return static_cast<float>(0.5 * p.gap * reference_scale(size));
+}
+
+int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
+                           const BlobParams& p) {
+  validate_blob_params(p);
+  const int out = graph.resource("blob-outlines");
+  graph.add_pass("blob-outlines", {id, depth}, {out}, [=](PassContext& ctx) {
+    const cv::Mat& ids = ctx.read<cv::Mat>(id);
+    ctx.write(out, still_blob_set(find_blob_outlines(ids, ctx.read<cv::Mat>(depth), branch_cluster,
+                                                     blob_shrink_wrap(p),
+                                                     blob_gap_radius(p, ids.size()))));
+  });
+  return out;
+}
+
+int add_blobs_pass(RenderGraph& graph, int outlines, const BlobResources& r, const BlobFrame& frame,
+                   const BlobParams& p) {
+  validate_blob_params(p);
+  const int out = graph.resource("blobs");
+  std::vector<int> reads = {outlines, r.color, r.albedo, r.id};
+  const bool position = blob_needs_position(frame.lighting, p);
+  SYLVA_CHECK(!position || r.position >= 0, "blobs: a point light needs the position buffer");
+  if (position) reads.push_back(r.position);
+  if (r.lines >= 0) reads.push_back(r.lines);
+  graph.add_pass("blobs", reads, {out}, [=](PassContext& ctx) {
+    BlobImages in;
+    in.color = ctx.read<cv::Mat>(r.color);
+    in.albedo = ctx.read<cv::Mat>(r.albedo);
+    in.id = ctx.read<cv::Mat>(r.id);
+    if (position) in.position = ctx.read<cv::Mat>(r.position);
+    if (r.lines >= 0) in.lines = ctx.read<cv::Mat>(r.lines);
+    ctx.write(out, paint_blobs(in, ctx.read<BlobSet>(outlines), frame, p));
+  });
+  return out;
+}
+
+}  // namespace sylva
