@@ -145,7 +145,7 @@ Action add_turntable_command(CLI::App& app) {
 
     auto frame = prepare_frame(o->scene, o->view);
     SheetScene scene = sheet_scene(*frame, o->illumination, o->scene.seed);
-    memoize_foliage(scene, o->quiet);
+    memoize_preprocessing(scene, o->quiet);
     const Camera base = frame->setup.camera;
     if (to_dir) {
       std::error_code ec;

@@ -175,13 +175,31 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
   return finish(fit_ao_shading(points, fit));
 }
 
+std::string ao_memo_key(const AoSettings& s, uint64_t seed) {
+  return s.model + ";" + std::to_string(s.constant) + ";" + s.alpha_rho + ";" +
+         std::to_string(s.shells) + ";" + s.solid_angle + ";" + std::to_string(seed);
+}
+
 int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
   SYLVA_CHECK(setup.scene != nullptr, "AO shading needs a scene");
   const int out = graph.resource("ao-shading");
   graph.add_pass("ao-shells", {}, {out}, [out, setup](PassContext& ctx) {
-    auto ao = std::make_shared<const AoShading>(
-        scene_ao_shading(*setup.scene, setup.settings, setup.seed));
-    ctx.write(out, std::shared_ptr<const AoShading>(ao));
+    std::shared_ptr<const AoShading> ao;
+    const std::string key = setup.memo ? ao_memo_key(setup.settings, setup.seed) : "";
+    if (setup.memo) {
+      const std::lock_guard<std::mutex> lock(setup.memo->mutex);
+      auto it = setup.memo->shading.find(key);
+      if (it != setup.memo->shading.end()) ao = it->second;
+    }
+    if (!ao) {
+      ao = std::make_shared<const AoShading>(
+          scene_ao_shading(*setup.scene, setup.settings, setup.seed));
+      if (setup.memo) {
+        const std::lock_guard<std::mutex> lock(setup.memo->mutex);
+        setup.memo->shading.emplace(key, ao);
+      }
+    }
+    ctx.write(out, ao);
   });
   return out;
 }
@@ -191,7 +209,8 @@ int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
 namespace sylva {
 
 int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
-                          const glm::mat4& view, int rays, uint64_t seed) {
+                          const glm::mat4& view, int rays, uint64_t seed,
+                          std::shared_ptr<AoMemo> memo) {
   SYLVA_CHECK(scene != nullptr, "ray-traced AO needs a scene");
   const int out = graph.resource("ao-raytraced");
   const glm::mat4 to_world = glm::inverse(view);
@@ -213,11 +232,19 @@ int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, 
       }
     cv::Mat ao = cv::Mat::zeros(pos.size(), CV_32FC1);
     if (!points.empty()) {
-      const AoReferenceScene tracer = make_scene_tracer(*scene);
+      std::shared_ptr<const AoReferenceScene> tracer;
+      if (memo) {
+        const std::lock_guard<std::mutex> lock(memo->mutex);
+        if (!memo->tracer)
+          memo->tracer = std::make_shared<const AoReferenceScene>(make_scene_tracer(*scene));
+        tracer = memo->tracer;
+      } else {
+        tracer = std::make_shared<const AoReferenceScene>(make_scene_tracer(*scene));
+      }
       AoReferenceOptions options;
       options.rays = rays;
       options.seed = seed;
-      const std::vector<float> v = tracer.visibility(points, normals, options);
+      const std::vector<float> v = tracer->visibility(points, normals, options);
       for (size_t i = 0; i < pixels.size(); ++i)
         ao.at<float>(pixels[i] / pos.cols, pixels[i] % pos.cols) = v[i];
     }

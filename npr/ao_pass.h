@@ -6,6 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -52,10 +55,24 @@ AoShading::Model ao_model_of(const std::string& model);
 // (BLEND: 0.5, as the raster pass draws it), nearest texel, repeat wrapping.
 AoReferenceScene make_scene_tracer(const Scene& scene);
 
+// What the frames of one scene (a turntable, a keyframe study) compute once and share: the
+// fitted shells per ao.* settings and seed, and the ray tracer's BVH. Thread-safe.
+struct AoMemo {
+  std::mutex mutex;
+  std::map<std::string, std::shared_ptr<const AoShading>> shading;  // by ao_memo_key
+  std::shared_ptr<const AoReferenceScene> tracer;                   // make_scene_tracer
+};
+
+// The key of `settings` and `seed` in AoMemo::shading.
+std::string ao_memo_key(const AoSettings& settings, uint64_t seed);
+
 struct AoSetup {
   const Scene* scene = nullptr;  // outlives execute()
   AoSettings settings;
   uint64_t seed = 1;  // k-means seeding and the alpha_rho fit's samples and rays
+  // Shared across graphs over the same scene: the node fits once and reuses the result.
+  // Null: fit on every execute().
+  std::shared_ptr<AoMemo> memo;
 };
 
 // What the AO node computes for `settings` (ao_model_of; for hegeman-*: the shells fitted to
@@ -72,14 +89,17 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& settings, uint6
 std::vector<glm::vec3> foliage_vertices(const Scene& scene);
 
 // Returns the "ao-shading" resource. The node fits the shells (hegeman-*; k = 1 for sphere
-// and ellipsoid) and alpha_rho when asked; for constant / luft-density it only passes the
-// model on. Throws InputError("ao.*", ...) when run on a scene without foliage for hegeman-*.
+// and ellipsoid) and alpha_rho when asked (or takes them from setup.memo); for constant /
+// luft-density it only passes the model on. Throws InputError("ao.*", ...) when run on a scene
+// without foliage for hegeman-*.
 int add_ao_shading_pass(RenderGraph& graph, AoSetup setup);
 
 // ao.model = raytraced: reads the raster pass's view-space "position" and "normal" targets and
 // writes "ao-raytraced" (CV_32FC1, AoReferenceScene::visibility with `rays` rays seeded by
-// `seed` at each covered pixel, moved to world space by inverse(view); background 0).
+// `seed` at each covered pixel, moved to world space by inverse(view); background 0). With
+// `memo`, Embree's BVH over the scene is built once and shared.
 int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
-                          const glm::mat4& view, int rays, uint64_t seed);
+                          const glm::mat4& view, int rays, uint64_t seed,
+                          std::shared_ptr<AoMemo> memo = nullptr);
 
 }  // namespace sylva

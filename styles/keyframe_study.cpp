@@ -41,7 +41,7 @@ KeyframeStudy run_keyframe_study(const SheetScene& scene_in, const Style& style,
                                  const KeyframeStudyOptions& options) {
   validate_keyframe_study(options, style);
   SheetScene scene = scene_in;
-  memoize_foliage(scene, true);
+  memoize_preprocessing(scene, true);
   KeyframeStudy study;
   study.width = scene.raster.camera.width;
   study.height = scene.raster.camera.height;

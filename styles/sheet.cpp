@@ -173,6 +173,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
           as.scene = scene.scene;
           as.settings = style.params().ao;
           as.seed = scene.seed;
+          as.memo = scene.ao_memo;
           ao[akey] = add_ao_shading_pass(graph, as);
         }
         setup.ao = ao[akey];
@@ -183,7 +184,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
         SYLVA_CHECK(scene.scene != nullptr, "ao.model needs SheetScene::scene");
         rasters[rkey].ao =
             add_raytraced_ao_pass(graph, scene.scene, rasters[rkey].position, rasters[rkey].normal,
-                                  setup.camera.view, aos.rays, scene.seed);
+                                  setup.camera.view, aos.rays, scene.seed, scene.ao_memo);
       }
       requests[rkey] = setup.request;
     }

@@ -13,6 +13,10 @@
 #include "styles/style.h"
 
 namespace sylva {
+struct AoMemo;  // npr/ao_pass.h
+}  // namespace sylva
+
+namespace sylva {
 
 struct SheetEntry {
   std::string style;               // built-in preset name or .toml path
@@ -56,6 +60,9 @@ struct SheetScene {
   // execute()) and the seed of the fit.
   const Scene* scene = nullptr;
   uint64_t seed = 1;
+  // Set for many frames of one scene (memoize_preprocessing): the AO shells and the ray
+  // tracer's BVH are computed once and shared. Null: per graph.
+  std::shared_ptr<AoMemo> ao_memo;
 };
 
 struct SheetPlan {

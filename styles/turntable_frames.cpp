@@ -1,10 +1,12 @@
 #include "styles/turntable_frames.h"
 
 #include "core/graph/render_graph.h"
+#include "npr/ao_pass.h"
 
 namespace sylva {
 
-void memoize_foliage(SheetScene& scene, bool quiet) {
+void memoize_preprocessing(SheetScene& scene, bool quiet) {
+  scene.ao_memo = std::make_shared<AoMemo>();
   auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
   scene.foliage = [f = scene.foliage, memo, quiet](const FoliageSettings& s) {
     IlluminationSetup setup = f(s);

@@ -17,8 +17,9 @@
 namespace sylva {
 
 // Wraps scene.foliage so the Luft preprocessing runs once for every graph rendered from this
-// scene (it does not depend on the view); `quiet` drops its progress report.
-void memoize_foliage(SheetScene& scene, bool quiet);
+// scene (it does not depend on the view), and sets scene.ao_memo so the AO shells and the ray
+// tracer's BVH are made once too; `quiet` drops the preprocessing's progress report.
+void memoize_preprocessing(SheetScene& scene, bool quiet);
 
 // One rendered frame.
 struct TurntableFrame {

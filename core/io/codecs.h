@@ -10,8 +10,8 @@
 
 namespace sylva {
 
-// The plugin's entry points, loaded once (thread-safe). The plugin is looked for next to the
-// executable (dirname of /proc/self/exe), then where this build put it, then at $SYLVA_CODECS.
+// The plugin's entry points, loaded once (thread-safe). The plugin is looked for at
+// $SYLVA_CODECS, next to the executable (dirname of /proc/self/exe), then where this build put it.
 // Throws std::runtime_error naming every path tried and dlerror() when none loads.
 const CodecsApi& codecs();
 

@@ -212,6 +212,52 @@ TEST(Ao, RaytracedIsDarkerInsideTheCrownThanAtItsRim) {
   EXPECT_LT(inside / insides, rim / rims);
 }
 
+// A turntable's frames share an AoMemo: the shells are fitted once per settings and the ray
+// tracer's BVH is built once, and the results equal those made without it.
+TEST(Ao, MemoFitsOnceAndBuildsTheTracerOnce) {
+  AoRig rig(32);
+  auto memo = std::make_shared<AoMemo>();
+  auto shading = [&](int shells, std::shared_ptr<AoMemo> m) {
+    RenderGraph graph;
+    AoSetup as;
+    as.scene = &rig.scene;
+    as.settings.model = "hegeman-shells";
+    as.settings.shells = shells;
+    as.memo = std::move(m);
+    const int out = add_ao_shading_pass(graph, as);
+    graph.present(out);
+    graph.execute();
+    return graph.get<std::shared_ptr<const AoShading>>(out);
+  };
+  const auto first = shading(2, memo);
+  EXPECT_EQ(shading(2, memo), first);  // the same object: not fitted again
+  EXPECT_EQ(memo->shading.size(), 1u);
+  const auto other = shading(3, memo);
+  EXPECT_NE(other, first);
+  EXPECT_EQ(memo->shading.size(), 2u);
+  const auto fresh = shading(2, nullptr);
+  EXPECT_NE(fresh, first);
+  EXPECT_EQ(fresh->alpha_rho, first->alpha_rho);
+  EXPECT_EQ(fresh->centres, first->centres);
+
+  auto traced = [&](std::shared_ptr<AoMemo> m) {
+    RenderGraph graph;
+    const GBufferHandles gb = add_raster_pass(graph, rig.rs);
+    const int ao = add_raytraced_ao_pass(graph, &rig.scene, gb.position, gb.normal,
+                                         rig.rs.camera.view, 4, 1, std::move(m));
+    graph.present(ao);
+    graph.execute();
+    return graph.get<cv::Mat>(ao).clone();
+  };
+  const cv::Mat a = traced(memo);
+  ASSERT_NE(memo->tracer, nullptr);
+  const AoReferenceScene* tracer = memo->tracer.get();
+  const cv::Mat b = traced(memo);
+  EXPECT_EQ(memo->tracer.get(), tracer);  // built once
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(a, traced(nullptr), cv::NORM_INF), 0.0);
+}
+
 TEST(Ao, OutOfRangeValuesNameTheKey) {
   for (const char* bad :
        {"ao.model=foo", "ao.constant=1.5", "ao.constant=-0.1", "ao.alpha_rho=-1", "ao.alpha_rho=x",
