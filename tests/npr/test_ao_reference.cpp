@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "npr/ao_fit.h"
+#include "npr/ao_pass.h"
 #include "npr/ao_shells.h"
 #include "npr/hegeman_ao.h"
 
@@ -166,6 +167,47 @@ TEST(AoReference, NoSelfHitsOnTheQueryLeaf) {
   const glm::vec3 on_leaf(0.0f, 0.0f, -1.0f / 3.0f);
   EXPECT_EQ(scene.visibility_at(on_leaf, glm::vec3(0, 1, 0), rays(512), 0), 1.0f);
   EXPECT_EQ(scene.visibility_at(on_leaf, glm::vec3(0, -1, 0), rays(512), 0), 1.0f);
+}
+
+// make_scene_tracer reads the scene's materials: a roof quad over the point lets rays through
+// where its base-colour texture's alpha is below the cutoff (MASK: the material's cutoff;
+// BLEND: 0.5) and blocks elsewhere; an opaque material blocks whatever its texture holds.
+TEST(AoReference, SceneTracerHonoursAlphaCutoutTextures) {
+  auto visibility = [](uint8_t alpha, AlphaMode mode, float cutoff, bool half = false) {
+    Scene s;
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.rgba = {200, 200, 200, alpha, 200, 200, 200, half ? uint8_t(255) : alpha};
+    s.textures.push_back(t);
+    Material m;
+    m.base_color_texture = 0;
+    m.alpha_mode = mode;
+    m.alpha_cutoff = cutoff;
+    s.materials.push_back(m);
+    Mesh roof;
+    roof.material = 0;
+    roof.positions = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
+    roof.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // u = 0.5 splits the roof at x = 0
+    roof.indices = {0, 1, 2, 0, 2, 3};
+    s.meshes.push_back(roof);
+    const AoReferenceScene tracer = make_scene_tracer(s);
+    AoReferenceOptions o;
+    o.rays = 1024;
+    return tracer.visibility({glm::vec3(0)}, {glm::vec3(0, 1, 0)}, o)[0];
+  };
+  const float blocked = visibility(255, AlphaMode::Opaque, 0.5f);
+  EXPECT_LT(blocked, 0.6f);
+  EXPECT_GT(blocked, 0.0f);
+  EXPECT_EQ(visibility(0, AlphaMode::Opaque, 0.5f), blocked);  // opaque ignores the texture
+  EXPECT_EQ(visibility(0, AlphaMode::Mask, 0.5f), 1.0f);
+  EXPECT_EQ(visibility(255, AlphaMode::Mask, 0.5f), blocked);
+  EXPECT_EQ(visibility(100, AlphaMode::Mask, 0.5f), 1.0f);        // 0.39 < 0.5
+  EXPECT_EQ(visibility(100, AlphaMode::Mask, 0.3f), blocked);     // 0.39 >= 0.3
+  EXPECT_EQ(visibility(100, AlphaMode::Blend, 0.3f), 1.0f);       // BLEND cuts at 0.5
+  const float half = visibility(0, AlphaMode::Mask, 0.5f, true);  // one half of the roof
+  EXPECT_GT(half, blocked + 0.1f);
+  EXPECT_LT(half, 0.95f);
 }
 
 TEST(AoReference, FilterAndAlphaCutout) {
