@@ -14,6 +14,7 @@
 #include "core/graph/render_graph.h"
 #include "npr/ao_pass.h"
 #include "npr/study_chart.h"
+#include "npr/study_csv.h"
 
 namespace sylva {
 
@@ -24,12 +25,6 @@ using Clock = std::chrono::steady_clock;
 const std::vector<std::string> kModels = {"none",           "constant",          "luft-density",
                                           "hegeman-sphere", "hegeman-ellipsoid", "hegeman-shells",
                                           "raytraced"};
-
-std::string format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 std::string joined_models() {
   std::string s;
@@ -357,7 +352,7 @@ std::string ao_study_csv(const AoStudy& study) {
       "foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,nonfoliage_pixels,nonfoliage_mean,"
       "nonfoliage_rmse,nonfoliage_mae,error\n";
   auto num = [](const std::optional<double>& v, const char* fmt) {
-    return v && std::isfinite(*v) ? format(fmt, *v) : std::string();
+    return v && std::isfinite(*v) ? format_number(fmt, *v) : std::string();
   };
   auto count = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
   auto errors = [&](const AoPixelError& e) {
@@ -365,13 +360,7 @@ std::string ao_study_csv(const AoStudy& study) {
            num(e.mae, "%.6g");
   };
   for (const AoStudyRow& r : study.rows) {
-    std::string error;
-    if (!r.error.empty()) {
-      error = "\"";
-      for (char c : r.error)
-        error += c == '"' ? std::string("\"\"") : std::string(1, c);
-      error += "\"";
-    }
+    const std::string error = csv_quoted(r.error);
     csv += r.model + "," + count(r.shells) + "," + count(r.rays) + "," + (r.reference ? "1" : "0") +
            "," + num(r.constant, "%.6g") + "," + num(r.alpha_rho, "%.6g") + "," +
            num(r.setup_seconds, "%.4f") + "," + num(r.frame_seconds, "%.5f") + "," +

@@ -11,18 +11,13 @@
 #include "core/error.h"
 #include "npr/generators.h"
 #include "npr/study_chart.h"
+#include "npr/study_csv.h"
 
 namespace sylva {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string format(const char* fmt, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
-}
 
 // What the comparison needs from the reference, computed once.
 struct Reference {
@@ -132,7 +127,7 @@ void validate_foliage_study(const FoliageStudyOptions& o) {
   if (o.fractions.empty()) throw InputError("fractions", "name at least one fraction in (0, 1]");
   for (double f : o.fractions)
     if (!(f > 0.0 && f <= 1.0))
-      throw InputError("fractions", "each must be in (0, 1], got " + format("%g", f));
+      throw InputError("fractions", "each must be in (0, 1], got " + format_number("%g", f));
   if (o.grids.empty()) throw InputError("grids", "name at least one grid in [2, 1024] cells");
   for (int g : o.grids)
     if (g < 2 || g > 1024)
@@ -228,23 +223,18 @@ std::string foliage_study_csv(const FoliageStudy& study) {
       "fraction,grid,normals,encoding,reference,generators,tau,d_min,seconds,normal_mean_deg,"
       "normal_p95_deg,ka_rmse,ka_interior_rmse,error\n";
   auto num = [](const std::optional<double>& v, const char* fmt) {
-    return v && std::isfinite(*v) ? format(fmt, *v) : std::string();
+    return v && std::isfinite(*v) ? format_number(fmt, *v) : std::string();
   };
   for (const FoliageStudyRow& r : study.rows) {
-    std::string error;
-    if (!r.error.empty()) {
-      error = "\"";
-      for (char c : r.error)
-        error += c == '"' ? std::string("\"\"") : std::string(1, c);
-      error += "\"";
-    }
-    csv += format("%g", r.fraction) + "," + std::to_string(r.grid) + "," +
+    const std::string error = csv_quoted(r.error);
+    csv += format_number("%g", r.fraction) + "," + std::to_string(r.grid) + "," +
            normal_source_name(r.normals) + "," + ka_encoding_name(r.encoding) + "," +
            (r.reference ? "1" : "0") + "," +
            (r.generators ? std::to_string(*r.generators) : std::string()) + "," +
-           format("%.6g", r.tau) + "," + format("%.6g", r.d_min) + "," + num(r.seconds, "%.4f") +
-           "," + num(r.normal_mean_deg, "%.6g") + "," + num(r.normal_p95_deg, "%.6g") + "," +
-           num(r.ka_rmse, "%.6g") + "," + num(r.ka_interior_rmse, "%.6g") + "," + error + "\n";
+           format_number("%.6g", r.tau) + "," + format_number("%.6g", r.d_min) + "," +
+           num(r.seconds, "%.4f") + "," + num(r.normal_mean_deg, "%.6g") + "," +
+           num(r.normal_p95_deg, "%.6g") + "," + num(r.ka_rmse, "%.6g") + "," +
+           num(r.ka_interior_rmse, "%.6g") + "," + error + "\n";
   }
   return csv;
 }

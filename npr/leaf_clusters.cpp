@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/scene/load.h"
+#include "npr/study_csv.h"
 
 namespace sylva {
 namespace {
@@ -148,12 +149,6 @@ size_t default_cluster_count(size_t leaves) {
   return std::clamp<size_t>(size_t(std::lround(std::sqrt(double(leaves) / 2.0))), 1, 64);
 }
 
-std::string format(const char* fmt, double a) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, fmt, a);
-  return buf;
-}
-
 }  // namespace
 
 void assign_clusters(Scene& scene, const ClusterOptions& options) {
@@ -178,7 +173,7 @@ void assign_clusters(Scene& scene, const ClusterOptions& options) {
               : auto_division(h, options.clusters > 0 ? size_t(options.clusters)
                                                       : default_cluster_count(leaves.count));
       labels = hierarchy_labels(h, division);
-      scene.report.cluster_method = format("hierarchy (division diameter %g)", division);
+      scene.report.cluster_method = format_number("hierarchy (division diameter %g)", division);
     } else {
       scene.report.warnings.push_back("hierarchy has " + std::to_string(h.leaf_branch.size()) +
                                       " leaves but the scene has " + std::to_string(leaves.count) +
