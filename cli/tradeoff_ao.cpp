@@ -16,8 +16,9 @@ namespace sylva::cli {
 namespace {
 
 void print_table(const AoStudy& study) {
-  std::printf("%-18s %5s %9s %9s %9s %9s %9s %9s %9s %9s\n", "model", "k/ray", "alpha_rho",
-              "setup_s", "frame_s", "added_s", "fol_rmse", "fol_mae", "oth_rmse", "oth_mae");
+  std::printf("%-18s %5s %9s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "model", "k/ray", "alpha_rho",
+              "setup_s", "frame_s", "added_s", "fol_rmse", "fol_mae", "fol_trend", "oth_rmse",
+              "oth_mae", "oth_trend");
   for (const AoStudyRow& r : study.rows) {
     const std::string k = r.shells ? std::to_string(*r.shells)
                           : r.rays ? std::to_string(*r.rays)
@@ -28,11 +29,12 @@ void print_table(const AoStudy& study) {
       continue;
     }
     std::printf(
-        " %9s %9s %9s %9s %9s %9s %9s %9s%s\n", table_cell(r.alpha_rho, "%.4g").c_str(),
+        " %9s %9s %9s %9s %9s %9s %9s %9s %9s %9s%s\n", table_cell(r.alpha_rho, "%.4g").c_str(),
         table_cell(r.setup_seconds, "%.3f").c_str(), table_cell(r.frame_seconds, "%.4f").c_str(),
         table_cell(r.added_seconds, "%.4f").c_str(), table_cell(r.foliage.rmse, "%.4f").c_str(),
-        table_cell(r.foliage.mae, "%.4f").c_str(), table_cell(r.nonfoliage.rmse, "%.4f").c_str(),
-        table_cell(r.nonfoliage.mae, "%.4f").c_str(), r.reference ? "  (reference)" : "");
+        table_cell(r.foliage.mae, "%.4f").c_str(), table_cell(r.foliage.trend_rmse, "%.4f").c_str(),
+        table_cell(r.nonfoliage.rmse, "%.4f").c_str(), table_cell(r.nonfoliage.mae, "%.4f").c_str(),
+        table_cell(r.nonfoliage.trend_rmse, "%.4f").c_str(), r.reference ? "  (reference)" : "");
   }
 }
 

@@ -26,7 +26,7 @@ struct Objective {
     double s = 0.0;
     for (const AlphaRhoSample& p : *samples) {
       const double r = std::exp(-k * (p.weighted_volume / x_scale)) - p.visibility;
-      s += r * r;
+      s += p.weight * r * r;
     }
     return s;
   }
@@ -36,8 +36,8 @@ struct Objective {
     for (const AlphaRhoSample& p : *samples) {
       const double x = p.weighted_volume / x_scale;
       const double e = std::exp(-k * x);
-      d1 += -2.0 * x * e * (e - p.visibility);
-      d2 += 2.0 * x * x * e * (2.0 * e - p.visibility);
+      d1 += -2.0 * p.weight * x * e * (e - p.visibility);
+      d2 += 2.0 * p.weight * x * x * e * (2.0 * e - p.visibility);
     }
   }
 };
@@ -99,7 +99,7 @@ double brent(const Objective& f, double lo, double hi, double x0) {
 
 AlphaRhoFit fit_alpha_rho(const std::vector<AlphaRhoSample>& samples) {
   if (samples.empty()) throw InputError("alpha-rho samples", "need at least one sample, got none");
-  double x_max = 0.0;
+  double x_max = 0.0, total_weight = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const AlphaRhoSample& s = samples[i];
     if (!(std::isfinite(s.weighted_volume) && s.weighted_volume >= 0.0))
@@ -108,8 +108,14 @@ AlphaRhoFit fit_alpha_rho(const std::vector<AlphaRhoSample>& samples) {
     if (!(s.visibility >= 0.0 && s.visibility <= 1.0))
       throw InputError("alpha-rho samples",
                        "sample " + std::to_string(i) + ": visibility must be in [0, 1]");
+    if (!(std::isfinite(s.weight) && s.weight >= 0.0))
+      throw InputError("alpha-rho samples",
+                       "sample " + std::to_string(i) + ": weight must be finite and >= 0");
     x_max = std::max(x_max, s.weighted_volume);
+    total_weight += s.weight;
   }
+  if (!(total_weight > 0.0) || !std::isfinite(total_weight))
+    throw InputError("alpha-rho samples", "the weights sum to 0 (or overflow)");
 
   AlphaRhoFit fit;
   Objective f{&samples, x_max > 0.0 ? x_max : 1.0, &fit.evaluations};
@@ -117,12 +123,12 @@ AlphaRhoFit fit_alpha_rho(const std::vector<AlphaRhoSample>& samples) {
   double num = 0.0, den = 0.0, pull = 0.0;
   for (const AlphaRhoSample& s : samples) {
     const double x = s.weighted_volume / f.x_scale;
-    num += x * -std::log(std::max(s.visibility, kVisibilityFloor));
-    den += x * x;
-    pull += x * (1.0 - s.visibility);  // -S'(0) / 2
+    num += s.weight * x * -std::log(std::max(s.visibility, kVisibilityFloor));
+    den += s.weight * x * x;
+    pull += s.weight * x * (1.0 - s.visibility);  // -S'(0) / 2
   }
   if (!(pull > 0.0) || !(den > 0.0) || !(num > 0.0)) {  // S is non-decreasing: k = 0
-    fit.rmse = std::sqrt(f(0.0) / double(samples.size()));
+    fit.rmse = std::sqrt(f(0.0) / total_weight);
     return fit;
   }
   const double k0 = num / den;
@@ -159,7 +165,7 @@ AlphaRhoFit fit_alpha_rho(const std::vector<AlphaRhoSample>& samples) {
   }
   fit.alpha_rho = std::max(0.0, k) / f.x_scale;
   fit.log_linear_estimate = k0 / f.x_scale;
-  fit.rmse = std::sqrt(f(std::max(0.0, k)) / double(samples.size()));
+  fit.rmse = std::sqrt(f(std::max(0.0, k)) / total_weight);
   return fit;
 }
 

@@ -77,12 +77,26 @@ Pixels classify_pixels(const Scene& scene, Rasterizer& rasterizer, const AoStudy
   return px;
 }
 
+// `v` averaged over the class's pixels (mask 1) near each pixel: a Gaussian of `sigma` pixels,
+// normalised by the mask's own blur so other classes and the background do not leak in.
+cv::Mat class_blur(const cv::Mat& v, const cv::Mat& mask, double sigma) {
+  cv::Mat vm, wm;
+  cv::multiply(v, mask, vm);
+  cv::GaussianBlur(vm, vm, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
+  cv::GaussianBlur(mask, wm, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
+  cv::Mat out;
+  cv::divide(vm, cv::max(wm, 1e-6f), out);
+  return out;
+}
+
 // The model's AO buffer against the reference over one class of pixels.
 AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const Pixels& px, bool foliage) {
   SYLVA_CHECK(ao.type() == CV_32FC1 && ref.type() == CV_32FC1 && ao.size() == ref.size() &&
                   ao.isContinuous() && ref.isContinuous(),
               "AO study: AO buffers are continuous float images of one size");
   AoPixelError e;
+  cv::Mat mask = cv::Mat::zeros(ao.size(), CV_32FC1);
+  auto* m = mask.ptr<float>(0);
   double sum = 0, sq = 0, abs = 0;
   const auto* a = ao.ptr<float>(0);
   const auto* r = ref.ptr<float>(0);
@@ -92,14 +106,25 @@ AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const Pixels& px, bo
     sum += v;
     sq += d * d;
     abs += std::abs(d);
+    m[px.index[i]] = 1.0f;
     ++e.pixels;
   }
-  if (e.pixels > 0) {
-    const double n = double(e.pixels);
-    e.mean = sum / n;
-    e.rmse = std::sqrt(sq / n);
-    e.mae = abs / n;
+  if (e.pixels == 0) return e;
+  const double n = double(e.pixels);
+  e.mean = sum / n;
+  e.rmse = std::sqrt(sq / n);
+  e.mae = abs / n;
+  const double sigma = kAoTrendSigma * std::min(ao.cols, ao.rows);
+  const cv::Mat ta = class_blur(ao, mask, sigma), tr = class_blur(ref, mask, sigma);
+  const auto* pa = ta.ptr<float>(0);
+  const auto* pr = tr.ptr<float>(0);
+  double tsq = 0;
+  for (size_t i = 0; i < px.index.size(); ++i) {
+    if (bool(px.foliage[i]) != foliage) continue;
+    const double d = double(pa[px.index[i]]) - double(pr[px.index[i]]);
+    tsq += d * d;
   }
+  e.trend_rmse = std::sqrt(tsq / n);
   return e;
 }
 
@@ -349,15 +374,15 @@ AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
 std::string ao_study_csv(const AoStudy& study) {
   std::string csv =
       "model,shells,rays,reference,constant,alpha_rho,setup_seconds,frame_seconds,added_seconds,"
-      "foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,nonfoliage_pixels,nonfoliage_mean,"
-      "nonfoliage_rmse,nonfoliage_mae,error\n";
+      "foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,foliage_trend_rmse,nonfoliage_pixels,"
+      "nonfoliage_mean,nonfoliage_rmse,nonfoliage_mae,nonfoliage_trend_rmse,error\n";
   auto num = [](const std::optional<double>& v, const char* fmt) {
     return v && std::isfinite(*v) ? format_number(fmt, *v) : std::string();
   };
   auto count = [](const std::optional<int>& v) { return v ? std::to_string(*v) : std::string(); };
   auto errors = [&](const AoPixelError& e) {
     return std::to_string(e.pixels) + "," + num(e.mean, "%.6g") + "," + num(e.rmse, "%.6g") + "," +
-           num(e.mae, "%.6g");
+           num(e.mae, "%.6g") + "," + num(e.trend_rmse, "%.6g");
   };
   for (const AoStudyRow& r : study.rows) {
     const std::string error = csv_quoted(r.error);

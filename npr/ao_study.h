@@ -60,6 +60,10 @@ void validate_ao_study(const AoStudyOptions& options);
 // (one per k) and raytraced (one per ray count other than reference_rays).
 size_t ao_study_runs(const AoStudyOptions& options);
 
+// The Gaussian's standard deviation for AoPixelError::trend_rmse, as a fraction of the
+// frame's shorter side (10 pixels at 512²: a few leaves of a tree filling the frame).
+constexpr double kAoTrendSigma = 0.02;
+
 // The AO buffer against the reference over one class of pixels.
 struct AoPixelError {
   size_t pixels = 0;  // covered pixels of the class the reference traced
@@ -67,6 +71,11 @@ struct AoPixelError {
   std::optional<double> mean;  // mean AO of this model there
   std::optional<double> rmse;  // sqrt(mean (ao - reference)^2)
   std::optional<double> mae;   // mean |ao - reference|
+  // The same at the crown's scale rather than the leaves': RMSE between the two buffers each
+  // averaged over the class's pixels within a Gaussian of kAoTrendSigma x the frame's shorter
+  // side (Hegeman et al. §3 claim their model keeps "the overall appearance trends", not
+  // leaf-scale detail; this measures that claim).
+  std::optional<double> trend_rmse;
 };
 
 struct AoStudyRow {
@@ -112,8 +121,8 @@ AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& options);
 
 // The CSV text, one row per AoStudyRow, header:
 // model,shells,rays,reference,constant,alpha_rho,setup_seconds,frame_seconds,added_seconds,
-// foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,nonfoliage_pixels,nonfoliage_mean,
-// nonfoliage_rmse,nonfoliage_mae,error
+// foliage_pixels,foliage_mean,foliage_rmse,foliage_mae,foliage_trend_rmse,nonfoliage_pixels,
+// nonfoliage_mean,nonfoliage_rmse,nonfoliage_mae,nonfoliage_trend_rmse,error
 // A field that does not apply to the row, or a class without pixels, is empty (never NaN);
 // failed rows keep their identity columns and a quoted error.
 std::string ao_study_csv(const AoStudy& study);

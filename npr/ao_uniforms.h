@@ -33,7 +33,8 @@ struct AoShellFit {
   // Auto: candidate sample points on the foliage with a normal each; up to 256 of them are
   // picked (seeded), each traced with its normal and with the opposite one (a double-sided
   // leaf is seen from either side, and the raster pass evaluates Eq. 6 with the side facing
-  // the viewer), and alpha_rho fitted by least squares (fit_alpha_rho) to all of them.
+  // the viewer), and alpha_rho fitted by least squares (fit_alpha_rho) to all of them, each
+  // weighted by its traced visibility (how likely a camera outside the crown sees it).
   std::vector<glm::vec3> sample_points, sample_normals;
   AoTracer trace;
 };

@@ -63,9 +63,9 @@ AoStudy synthetic_study(bool nonfoliage) {
   none.setup_seconds = 0.0;
   none.frame_seconds = 0.01;
   none.added_seconds = 0.0;
-  none.foliage = {100, 1.0, 0.5, 0.45};
+  none.foliage = {100, 1.0, 0.5, 0.45, 0.4};
   none.nonfoliage.pixels = nonfoliage ? 10 : 0;
-  if (nonfoliage) none.nonfoliage = {10, 1.0, 0.3, 0.3};
+  if (nonfoliage) none.nonfoliage = {10, 1.0, 0.3, 0.3, 0.25};
   AoStudyRow failed;
   failed.model = "hegeman-sphere";
   failed.error = "ao.model: 'hegeman-sphere' needs foliage, \"really\"";
@@ -77,14 +77,14 @@ AoStudy synthetic_study(bool nonfoliage) {
   shells.setup_seconds = 0.2;
   shells.frame_seconds = 0.012;
   shells.added_seconds = 0.002;
-  shells.foliage = {100, 0.6, 0.2, 0.15};
+  shells.foliage = {100, 0.6, 0.2, 0.15, 0.1};
   AoStudyRow ref = none;
   ref.model = "raytraced";
   ref.rays = 256;
   ref.reference = true;
   ref.frame_seconds = 2.0;
   ref.added_seconds.reset();
-  ref.foliage = {100, 0.55, 0.0, 0.0};
+  ref.foliage = {100, 0.55, 0.0, 0.0, 0.0};
   s.rows = {none, failed, shells, ref};
   return s;
 }
@@ -93,21 +93,23 @@ TEST(AoStudy, CsvLeavesWhatDoesNotApplyEmpty) {
   const std::string csv = ao_study_csv(synthetic_study(false));
   EXPECT_EQ(count_lines(csv), 5);
   EXPECT_EQ(csv.rfind("model,shells,rays,reference,constant,alpha_rho,setup_seconds,", 0), 0u);
-  EXPECT_NE(csv.find("\nnone,,,0,,,0.0000,0.01000,0.00000,100,1,0.5,0.45,0,,,,\n"),
+  EXPECT_NE(csv.find("\nnone,,,0,,,0.0000,0.01000,0.00000,100,1,0.5,0.45,0.4,0,,,,,\n"),
             std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("\nhegeman-sphere,,,0,,,,,,100,,,,0,,,,\"ao.model: 'hegeman-sphere' "
+  EXPECT_NE(csv.find("\nhegeman-sphere,,,0,,,,,,100,,,,,0,,,,,\"ao.model: 'hegeman-sphere' "
                      "needs foliage, \"\"really\"\"\"\n"),
             std::string::npos)
       << csv;
-  EXPECT_NE(csv.find("\nhegeman-shells,4,,0,,12.5,0.2000,0.01200,0.00200,100,0.6,0.2,0.15,"),
+  EXPECT_NE(csv.find("\nhegeman-shells,4,,0,,12.5,0.2000,0.01200,0.00200,100,0.6,0.2,0.15,0.1,"),
             std::string::npos)
       << csv;
   EXPECT_NE(csv.find("\nraytraced,,256,1,"), std::string::npos) << csv;
   // A non-finite number never reaches the CSV.
   AoStudy s = synthetic_study(true);
   s.rows[0].foliage.rmse = std::numeric_limits<double>::quiet_NaN();
+  s.rows[0].foliage.trend_rmse = std::numeric_limits<double>::infinity();
   EXPECT_EQ(ao_study_csv(s).find("nan"), std::string::npos);
+  EXPECT_EQ(ao_study_csv(s).find("inf"), std::string::npos);
 }
 
 TEST(AoStudy, ChartDrawsWithAndWithoutNonFoliagePixels) {

@@ -382,5 +382,39 @@ TEST(AlphaRhoFit, DegenerateSamples) {
   EXPECT_THROW(fit_alpha_rho({{1.0, NAN}}), InputError);
 }
 
+// Weights choose which samples the fit follows: two groups that want different k, and the
+// weighted fit lands on the heavier one's; a zero weight drops a sample; every weight
+// scaled by the same factor changes nothing.
+TEST(AlphaRhoFit, WeightsChooseWhichSamplesCount) {
+  std::vector<AlphaRhoSample> samples;
+  for (int i = 1; i <= 50; ++i) {
+    const double x = 0.04 * i;
+    samples.push_back({x, std::exp(-0.5 * x), 1.0});
+    samples.push_back({x, std::exp(-2.0 * x), 1.0});
+  }
+  const double even = fit_alpha_rho(samples).alpha_rho;
+  EXPECT_GT(even, 0.6);
+  EXPECT_LT(even, 1.9);
+  for (size_t i = 1; i < samples.size(); i += 2)
+    samples[i].weight = 0.0;
+  EXPECT_NEAR(fit_alpha_rho(samples).alpha_rho, 0.5, 1e-9);
+  EXPECT_LT(fit_alpha_rho(samples).rmse, 1e-9);  // the dropped samples' misfit does not count
+  for (size_t i = 0; i < samples.size(); ++i)
+    samples[i].weight = i % 2 ? 0.01 : 1.0;
+  const double lean = fit_alpha_rho(samples).alpha_rho;
+  EXPECT_GT(lean, 0.5);
+  EXPECT_LT(lean, even);
+  for (AlphaRhoSample& p : samples)
+    p.weight *= 1e-200;
+  EXPECT_NEAR(fit_alpha_rho(samples).alpha_rho, lean, 1e-9 * lean);
+  // Bad weights.
+  EXPECT_THROW(fit_alpha_rho({{1.0, 0.5, -1e-300}}), InputError);
+  EXPECT_THROW(fit_alpha_rho({{1.0, 0.5, NAN}}), InputError);
+  EXPECT_THROW(fit_alpha_rho({{1.0, 0.5, INFINITY}}), InputError);
+  EXPECT_THROW(fit_alpha_rho({{1.0, 0.5, 0.0}, {2.0, 0.2, 0.0}}), InputError);      // sum 0
+  EXPECT_THROW(fit_alpha_rho({{1.0, 0.5, 1e308}, {2.0, 0.2, 1e308}}), InputError);  // overflow
+  EXPECT_NO_THROW(fit_alpha_rho({{1.0, 0.5, 1e-300}}));
+}
+
 }  // namespace
 }  // namespace sylva
