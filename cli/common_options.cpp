@@ -55,8 +55,9 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
       ->capture_default_str();
   cmd.add_option("--ambient", o.ambient, "Ambient light intensity, [0, 1]")->capture_default_str();
   cmd.add_flag("--ground", o.ground,
-               "Add a ground plane under the scene's lowest point (a square 8 framing radii "
-               "wide); it receives the crown's occlusion with ao.model=hegeman-*");
+               "Add a ground plane under the scene's lowest point (a disc 30 framing radii "
+               "in radius, its edge near the horizon); it receives the crown's occlusion with "
+               "ao.model=hegeman-*");
   cmd.add_option("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB")
       ->capture_default_str();
   cmd.add_option("--light", o.lights,

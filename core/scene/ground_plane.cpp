@@ -1,6 +1,7 @@
 #include "core/scene/ground_plane.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sylva {
 
@@ -8,10 +9,8 @@ void add_ground_plane(Scene& scene, const glm::vec4& color) {
   const Bounds b = scene.bounds();
   const Sphere s = scene.framing_sphere();
   if (b.empty() || s.empty()) return;
-  const float half = s.radius > 0.0f ? kGroundHalfSizeInRadii * s.radius : 1.0f;
+  const float radius = s.radius > 0.0f ? kGroundRadiusInRadii * s.radius : 1.0f;
   const float y = b.min.y;
-  const float x0 = s.centre.x - half, x1 = s.centre.x + half;
-  const float z0 = s.centre.z - half, z1 = s.centre.z + half;
 
   Material material;
   material.name = "sylva-ground";
@@ -26,14 +25,25 @@ void add_ground_plane(Scene& scene, const glm::vec4& color) {
   Mesh m;
   m.name = "sylva-ground";
   m.material = int(scene.materials.size()) - 1;
-  // Counter-clockwise seen from above (+Y), so the front face looks up.
-  m.positions = {{x0, y, z0}, {x0, y, z1}, {x1, y, z1}, {x1, y, z0}};
-  m.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
-  m.uvs = {{0.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}};
-  m.indices = {0, 1, 2, 0, 2, 3};
-  m.primitive_ids.assign(2, primitive);
-  m.cluster_ids.assign(2, cluster);
-  m.roles.assign(2, Role::Ground);
+  // The centre, then the rim; each triangle (centre, rim i + 1, rim i) is counter-clockwise
+  // seen from above (+Y), so the front face looks up.
+  const glm::vec3 centre(s.centre.x, y, s.centre.z);
+  m.positions.push_back(centre);
+  for (int i = 0; i < kGroundSegments; ++i) {
+    const double a = 2.0 * M_PI * i / kGroundSegments;
+    m.positions.push_back(
+        centre + glm::vec3(float(radius * std::cos(a)), 0.0f, float(radius * std::sin(a))));
+  }
+  m.normals.assign(m.positions.size(), glm::vec3(0.0f, 1.0f, 0.0f));
+  for (const glm::vec3& p : m.positions)
+    m.uvs.push_back(glm::vec2(0.5f + 0.5f * (p.x - centre.x) / radius,
+                              0.5f + 0.5f * (p.z - centre.z) / radius));
+  for (uint32_t i = 0; i < uint32_t(kGroundSegments); ++i)
+    m.indices.insert(m.indices.end(), {0u, 1u + (i + 1) % uint32_t(kGroundSegments), 1u + i});
+  const size_t triangles = size_t(kGroundSegments);
+  m.primitive_ids.assign(triangles, primitive);
+  m.cluster_ids.assign(triangles, cluster);
+  m.roles.assign(triangles, Role::Ground);
   scene.meshes.push_back(std::move(m));
 }
 

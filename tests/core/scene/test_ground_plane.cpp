@@ -1,6 +1,9 @@
 // Tests for the ground plane of `--ground` (core/scene/ground_plane.h): placed at the lowest
-// point, sized by the framing radius, role ground, ids, unchanged framing, and the empty scene.
+// point, a disc sized by the framing radius, role ground, ids, unchanged framing, and the empty
+// scene.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/gl/depth_range.h"
 #include "core/scene/ground_plane.h"
@@ -31,22 +34,39 @@ TEST(GroundPlane, UnderTheLowestPointSizedByTheFramingRadius) {
   ASSERT_EQ(s.meshes.size(), 2u);
   const Mesh& g = s.meshes[1];
   EXPECT_EQ(g.name, "sylva-ground");
-  ASSERT_EQ(g.triangle_count(), 2u);
-  EXPECT_EQ(g.roles, (std::vector<Role>{Role::Ground, Role::Ground}));
-  EXPECT_EQ(g.primitive_ids, (std::vector<uint32_t>{2, 2}));
-  EXPECT_EQ(g.cluster_ids, (std::vector<uint32_t>{3, 3}));  // the non-foliage cluster
-  const float half = kGroundHalfSizeInRadii * before.radius;
-  for (const glm::vec3& p : g.positions) {
+  const size_t n = size_t(kGroundSegments);
+  ASSERT_EQ(g.triangle_count(), n);
+  EXPECT_EQ(g.roles, std::vector<Role>(n, Role::Ground));
+  EXPECT_EQ(g.primitive_ids, std::vector<uint32_t>(n, 2));
+  EXPECT_EQ(g.cluster_ids, std::vector<uint32_t>(n, 3));  // the non-foliage cluster
+  // A disc: the centre under the framing sphere's, the rim at kGroundRadiusInRadii * R.
+  const float radius = kGroundRadiusInRadii * before.radius;
+  ASSERT_EQ(g.positions.size(), n + 1);
+  EXPECT_EQ(g.positions[0], glm::vec3(before.centre.x, 1.0f, before.centre.z));
+  for (size_t i = 0; i < g.positions.size(); ++i) {
+    const glm::vec3& p = g.positions[i];
     EXPECT_EQ(p.y, 1.0f);
-    EXPECT_NEAR(std::abs(p.x - before.centre.x), half, 1e-5f);
-    EXPECT_NEAR(std::abs(p.z - before.centre.z), half, 1e-5f);
+    if (i == 0) continue;
+    EXPECT_NEAR(glm::length(glm::vec2(p.x - before.centre.x, p.z - before.centre.z)), radius,
+                1e-5f * radius);
   }
-  for (const glm::vec3& n : g.normals)
-    EXPECT_EQ(n, glm::vec3(0, 1, 0));
-  // Front faces look up.
-  const glm::vec3 a = g.positions[g.indices[0]], b = g.positions[g.indices[1]],
-                  c = g.positions[g.indices[2]];
-  EXPECT_GT(glm::cross(b - a, c - a).y, 0.0f);
+  ASSERT_EQ(g.uvs.size(), g.positions.size());
+  for (const glm::vec2& uv : g.uvs)
+    EXPECT_TRUE(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f);
+  for (const glm::vec3& nr : g.normals)
+    EXPECT_EQ(nr, glm::vec3(0, 1, 0));
+  // Every front face looks up, and the triangles tile the disc's polygon: their areas add up
+  // to n/2 r^2 sin(2 pi / n).
+  double area = 0.0;
+  for (size_t t = 0; t < n; ++t) {
+    const glm::vec3 a = g.positions[g.indices[3 * t]], b = g.positions[g.indices[3 * t + 1]],
+                    c = g.positions[g.indices[3 * t + 2]];
+    const float up = glm::cross(b - a, c - a).y;
+    EXPECT_GT(up, 0.0f) << t;
+    area += 0.5 * double(up);
+  }
+  EXPECT_NEAR(area, 0.5 * double(n) * double(radius) * radius * std::sin(2.0 * M_PI / double(n)),
+              1e-4 * area);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(g.material, 0);
   EXPECT_EQ(s.materials[0].base_color, glm::vec4(0.5f, 0.4f, 0.3f, 1.0f));
@@ -96,7 +116,7 @@ TEST(GroundPlane, CameraDepthHoldsTheGround) {
     EXPECT_GE(cam.near_plane, cam.far_plane * 1e-3f * 0.999f);
     EXPECT_EQ(cam.proj[0][0], plain.proj[0][0]);  // same field of view / extent
     EXPECT_EQ(cam.proj[1][1], plain.proj[1][1]);
-    // Every ground corner in front of the camera lies within [near, far] and maps to NDC
+    // Every ground vertex in front of the camera lies within [near, far] and maps to NDC
     // depth in [-1, 1].
     for (const glm::vec3& p : g.meshes.back().positions) {
       const glm::vec4 v = cam.view * glm::vec4(p, 1.0f);
