@@ -128,14 +128,22 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
   if (s.solid_angle != "exact" && s.solid_angle != "paper")
     throw InputError("ao.solid_angle", "must be exact or paper, got '" + s.solid_angle + "'");
   const std::vector<glm::vec3> points = foliage_vertices(scene);
-  Bounds grass;  // of the Role::Grass triangles (meshes without roles have none)
+  Bounds grass, ground;  // of the Role::Grass and Role::Ground triangles (none without roles)
   for (const Mesh& m : scene.meshes)
-    for (size_t t = 0; t < m.triangle_count() && t < m.roles.size(); ++t)
-      if (m.roles[t] == Role::Grass)
-        for (int k = 0; k < 3; ++k)
-          grass.extend(m.positions[m.indices[3 * t + size_t(k)]]);
+    for (size_t t = 0; t < m.triangle_count() && t < m.roles.size(); ++t) {
+      if (m.roles[t] != Role::Grass && m.roles[t] != Role::Ground) continue;
+      for (int k = 0; k < 3; ++k)
+        (m.roles[t] == Role::Grass ? grass : ground)
+            .extend(m.positions[m.indices[3 * t + size_t(k)]]);
+    }
+  // A flat ground (all its vertices at one height, as `--ground` makes) is taken as an
+  // infinite plane that also hides part of the sky of wood and other geometry above it.
+  const bool flat_ground =
+      !ground.empty() && ground.max.y - ground.min.y <= 1e-6f * std::max(1.0f, ground.diagonal());
   auto finish = [&](AoShading out) {
     out.exact_solid_angle = s.solid_angle == "exact";
+    out.ground_plane = flat_ground;
+    out.ground_y = flat_ground ? ground.min.y : 0.0f;
     if (!grass.empty()) {
       out.grass_ground = grass.min.y;  // Hegeman et al. Eq. 9: P_z from the roots, h the field
       out.grass_height = grass.max.y - grass.min.y;

@@ -80,8 +80,10 @@ struct AoSetup {
 // given or, for auto, fitted to ray-traced visibility (make_scene_tracer, 64 rays) at up to
 // 256 foliage-triangle centroids picked with `seed`); the crown sphere occluding the rest
 // (Eq. 7-8) is the foliage's bounding sphere, and grass (Role::Grass triangles, Eq. 9) has
-// its roots at their lowest y and the height of their extent in y. A scene with grass but no
-// foliage gets no shells and no crown (grass by Eq. 9 alone). Throws
+// its roots at their lowest y and the height of their extent in y. Flat ground (Role::Ground
+// triangles all at one y, within 1e-6 of their extent) is the ground plane that also darkens
+// wood and other geometry (AoShading::ground_plane). A scene with grass but no foliage gets
+// no shells and no crown (grass by Eq. 9 alone). Throws
 // InputError("ao.model", ...) for hegeman-* on a scene with neither foliage nor grass.
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& settings, uint64_t seed);
 

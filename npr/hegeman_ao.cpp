@@ -186,4 +186,14 @@ float grass_visibility(float height_above_ground, float blade_height, const glm:
   return std::clamp(float(pz / (2.0 * h) * (1.0 + cos_theta)), 0.0f, 1.0f);  // Eq. 9
 }
 
+float ground_plane_occlusion(float height_above_ground, const glm::vec3& normal,
+                             const glm::vec3& up) {
+  if (!(height_above_ground >= 0.0f) || !std::isfinite(height_above_ground)) return 0.0f;
+  glm::dvec3 nd, ud;
+  if (!direction(glm::dvec3(up), ud)) return 0.0f;
+  if (!direction(glm::dvec3(normal), nd)) return 0.5f;  // the average over all orientations
+  const double theta = std::acos(std::clamp(glm::dot(nd, ud), -1.0, 1.0));
+  return std::clamp(float(theta / kPi), 0.0f, 1.0f);
+}
+
 }  // namespace sylva

@@ -121,4 +121,14 @@ float object_visibility(const Sphere& crown, const glm::vec3& x, const glm::vec3
 float grass_visibility(float height_above_ground, float blade_height, const glm::vec3& normal,
                        const glm::vec3& up = glm::vec3(0.0f, 1.0f, 0.0f));
 
+// Not in the paper: the share of a point's hemisphere (uniform measure, as Eq. 3) that an
+// infinite ground plane below it hides, theta / pi with theta the angle between the normal
+// and `up` (the two hemispheres meet in a lune of 2 (pi - theta) steradians): 0 facing up,
+// 1/2 for an upright wall (a trunk), 1 facing down. The crown lies above the plane, so the
+// two occluders hide disjoint directions and their shares subtract: V = V_crown - this.
+// A point below the plane (height < 0) or a non-finite height: 0. Zero normal: 1/2 (the
+// average over orientations). Zero up: 0. Default up: +Y.
+float ground_plane_occlusion(float height_above_ground, const glm::vec3& normal,
+                             const glm::vec3& up = glm::vec3(0.0f, 1.0f, 0.0f));
+
 }  // namespace sylva

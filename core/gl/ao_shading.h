@@ -37,6 +37,11 @@ struct AoShading {
   // grass_ground clamped to [0, grass_height] (+Y up). grass_height <= 0: no grass term.
   float grass_ground = 0.0f;  // y of the grass roots, scene units, finite
   float grass_height = 0.0f;  // h, the grass field's height, scene units, finite
+  // Shells, wood and other fragments (not foliage, ground or grass) above a flat ground: the
+  // plane also hides theta / pi of their hemisphere (npr/hegeman_ao.h's
+  // ground_plane_occlusion, +Y up), subtracted from Eq. 8's V. ground_plane false: no plane.
+  bool ground_plane = false;
+  float ground_y = 0.0f;  // the plane's height, scene units, finite
 };
 inline constexpr int kMaxAoShells = 64;
 

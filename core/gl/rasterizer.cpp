@@ -239,6 +239,7 @@ struct Rasterizer::Impl {
                 crown ? ao.crown_radius : 0.0f);
     glUniform1i(p.ao_exact_solid_angle, ao.exact_solid_angle ? 1 : 0);
     glUniform2f(p.ao_grass, ao.grass_ground, ao.grass_height);
+    glUniform2f(p.ao_ground, ao.ground_y, ao.ground_plane ? 1.0f : 0.0f);
     if (n == 0) return;
     glUniform3fv(p.ao_centre, n, &ao.centres[0][0]);
     glUniform3fv(p.ao_anchor, n, &ao.anchors[0][0]);
@@ -406,8 +407,9 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
                 "AO shells: 0 to 64 shells, each with centre, anchor, matrices and volume");
     SYLVA_CHECK(std::isfinite(ao.crown_centre.x) && std::isfinite(ao.crown_centre.y) &&
                     std::isfinite(ao.crown_centre.z) && std::isfinite(ao.crown_radius) &&
-                    std::isfinite(ao.grass_ground) && std::isfinite(ao.grass_height),
-                "AO crown and grass uniforms must be finite");
+                    std::isfinite(ao.grass_ground) && std::isfinite(ao.grass_height) &&
+                    std::isfinite(ao.ground_y),
+                "AO crown, grass and ground uniforms must be finite");
   }
   if (!(ao.constant >= 0.0f && ao.constant <= 1.0f))
     throw InputError("ao.constant", "must be in [0, 1]");

@@ -95,6 +95,7 @@ uniform float u_ao_volume_scale[64];  // |det L|
 uniform vec4 u_ao_crown;              // Eq. 7-8 occluder: centre, radius (<= 0: none)
 uniform int u_ao_exact_solid_angle;   // 1: 2 pi (1 - cos beta); 0: the paper's pi (r/d)^2
 uniform vec2 u_ao_grass;              // Eq. 9: y of the roots, field height h (<= 0: none)
+uniform vec2 u_ao_ground;             // a flat ground: its y, and 1 (0: no ground plane)
 
 #ifdef OUT_COLOR
 layout(location = 0) out vec4 o_color;
@@ -230,12 +231,23 @@ float grass_visibility(vec3 x, vec3 n) {
   return clamp(pz / (2.0 * h) * (1.0 + cos_theta), 0.0, 1.0);
 }
 
+// The share of the hemisphere a flat ground below x hides, as npr/hegeman_ao.cpp's
+// ground_plane_occlusion with up = +Y: theta / pi.
+float ground_plane_occlusion(vec3 x, vec3 n) {
+  if (u_ao_ground.y == 0.0 || !(x.y >= u_ao_ground.x)) return 0.0;
+  float n_len = length(n);
+  if (!(n_len > 0.0)) return 0.5;
+  return clamp(acos(clamp(n.y / n_len, -1.0, 1.0)) / kPi, 0.0, 1.0);
+}
+
 // Hegeman models: the crown's own leaves by their shell (Eq. 4-6); everything else by the
-// crown's solid angle (Eq. 7-8), grass blades also by their height (Eq. 9).
+// crown's solid angle (Eq. 7-8), grass blades also by their height (Eq. 9), wood and other
+// geometry also by a flat ground under them.
 float hegeman_model_visibility(vec3 x, vec3 n) {
   if (v_role == 0u) return hegeman_visibility(x, n);  // Role::Foliage
   float v = object_visibility(x, n);
   if (v_role == 4u) v *= grass_visibility(x, n);  // Role::Grass
+  if (v_role == 1u || v_role == 3u) v -= ground_plane_occlusion(x, n);  // Wood, Other
   return clamp(v, 0.0, 1.0);
 }
 
@@ -434,6 +446,7 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.ao_crown = loc("u_ao_crown");
   p.ao_exact_solid_angle = loc("u_ao_exact_solid_angle");
   p.ao_grass = loc("u_ao_grass");
+  p.ao_ground = loc("u_ao_ground");
   return p;
 }
 

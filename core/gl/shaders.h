@@ -42,7 +42,7 @@ struct RasterProgram {
       alpha_cutoff, double_sided, has_normals, ortho, ambient, light_count, light_vector,
       light_color, light_spec, scaled_normals, oriented_foliage, flat_albedo, texture_mean,
       ao_model, ao_constant, ao_alpha_rho, ao_shell_count, ao_centre, ao_anchor, ao_inverse,
-      ao_transpose, ao_volume_scale, ao_crown, ao_exact_solid_angle, ao_grass;
+      ao_transpose, ao_volume_scale, ao_crown, ao_exact_solid_angle, ao_grass, ao_ground;
 };
 RasterProgram make_raster_program(TargetMask targets, bool alpha_test);
 

@@ -334,6 +334,38 @@ TEST(HegemanValidate, AlphaRho) {
   EXPECT_THROW(validate_alpha_rho(NAN), InputError);
 }
 
+TEST(HegemanGround, PlaneHidesThetaOverPiOfTheHemisphere) {
+  const glm::vec3 up(0, 1, 0);
+  EXPECT_EQ(ground_plane_occlusion(1.0f, up), 0.0f);                           // facing up
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(1, 0, 0)), 0.5f, 1e-6f);  // a wall
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, -up), 1.0f, 1e-6f);                 // facing down
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(1, 1, 0)), 0.25f, 1e-6f);
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(0, -1, 1)), 0.75f, 1e-6f);
+  // Against the lune's solid angle counted by Monte Carlo over the hemisphere.
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g;
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f));
+  int in = 0, hidden = 0;
+  while (in < 200000) {
+    const glm::vec3 w(g(rng), g(rng), g(rng));
+    if (glm::dot(w, n) <= 0.0f) continue;
+    ++in;
+    if (w.y < 0.0f) ++hidden;
+  }
+  EXPECT_NEAR(ground_plane_occlusion(0.0f, n), double(hidden) / in, 4e-3);
+  // Degenerate: on the plane counts, below it or non-finite: nothing; zero normal: 1/2;
+  // scale-free in the normal and up; zero up: nothing.
+  EXPECT_NEAR(ground_plane_occlusion(0.0f, glm::vec3(1, 0, 0)), 0.5f, 1e-6f);
+  EXPECT_EQ(ground_plane_occlusion(-1e-6f, glm::vec3(1, 0, 0)), 0.0f);
+  EXPECT_EQ(ground_plane_occlusion(NAN, glm::vec3(1, 0, 0)), 0.0f);
+  EXPECT_EQ(ground_plane_occlusion(INFINITY, glm::vec3(1, 0, 0)), 0.0f);
+  EXPECT_EQ(ground_plane_occlusion(1.0f, glm::vec3(0.0f)), 0.5f);
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(1e-30f, 0, 0)), 0.5f, 1e-6f);
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(1e30f, 1e30f, 0)), 0.25f, 1e-6f);
+  EXPECT_EQ(ground_plane_occlusion(1.0f, glm::vec3(1, 0, 0), glm::vec3(0.0f)), 0.0f);
+  EXPECT_NEAR(ground_plane_occlusion(1.0f, glm::vec3(0, 0, 1), glm::vec3(0, 0, 5)), 0.0f, 1e-6f);
+}
+
 TEST(AlphaRhoFit, RecoversAKnownValueExactly) {
   std::vector<AlphaRhoSample> samples;
   for (int i = 0; i < 200; ++i) {

@@ -6,6 +6,7 @@
 // roots than at the tips.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <string>
@@ -95,14 +96,20 @@ Rendered render(const Scene& scene, const std::string& model, const std::string&
   return r;
 }
 
-float cpu_object(const AoShading& ao, const glm::vec3& x, const glm::vec3& n) {
-  if (!(ao.crown_radius > 0.0f)) return 1.0f;
-  Sphere crown;
-  crown.centre = ao.crown_centre;
-  crown.radius = ao.crown_radius;
-  ObjectOcclusion o;
-  o.model = ao.exact_solid_angle ? SolidAngleModel::Exact : SolidAngleModel::Paper;
-  return object_visibility(crown, x, n, o);
+// What a non-foliage fragment gets: Eq. 7-8 of the crown, minus the ground plane's share of
+// the sky for wood (`wood`), as the shader does.
+float cpu_object(const AoShading& ao, const glm::vec3& x, const glm::vec3& n, bool wood = false) {
+  float v = 1.0f;
+  if (ao.crown_radius > 0.0f) {
+    Sphere crown;
+    crown.centre = ao.crown_centre;
+    crown.radius = ao.crown_radius;
+    ObjectOcclusion o;
+    o.model = ao.exact_solid_angle ? SolidAngleModel::Exact : SolidAngleModel::Paper;
+    v = object_visibility(crown, x, n, o);
+  }
+  if (wood && ao.ground_plane) v -= ground_plane_occlusion(x.y - ao.ground_y, n);
+  return std::clamp(v, 0.0f, 1.0f);
 }
 
 TEST(AoObjects, GroundAndTrunkMatchObjectVisibilityOnTheCpu) {
@@ -116,17 +123,20 @@ TEST(AoObjects, GroundAndTrunkMatchObjectVisibilityOnTheCpu) {
     ASSERT_EQ(r.ao.centres.size(), 1u);
     EXPECT_NEAR(glm::length(r.ao.centres[0] - r.ao.crown_centre), 0.0f, 1e-4f);
     EXPECT_NEAR(1.0f / r.ao.inverse[0][0][0], r.ao.crown_radius, 1e-3f * r.ao.crown_radius);
-    double max_diff = 0.0, near_sum = 0.0, far_sum = 0.0;
+    ASSERT_TRUE(r.ao.ground_plane);  // the flat --ground plane darkens the trunk too
+    EXPECT_EQ(r.ao.ground_y, scene.meshes.back().positions[0].y);
+    double max_diff = 0.0, near_sum = 0.0, far_sum = 0.0, trunk_sum = 0.0;
     int grounds = 0, trunks = 0, nears = 0, fars = 0;
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
         const int obj = r.object(x, y);
         if (obj != ground && obj != 2) continue;  // 2: the bark
         const glm::vec3 p = r.position(x, y), n = r.normal(x, y);
-        const float cpu = cpu_object(r.ao, p, n);
+        const float cpu = cpu_object(r.ao, p, n, obj == 2);
         max_diff = std::max(max_diff, double(std::abs(cpu - r.ao_at(x, y))));
         if (obj == 2) {
           ++trunks;
+          trunk_sum += r.ao_at(x, y);
           continue;
         }
         ++grounds;
@@ -147,6 +157,10 @@ TEST(AoObjects, GroundAndTrunkMatchObjectVisibilityOnTheCpu) {
     // A soft shadow: darker right under the crown than far from it.
     EXPECT_LT(near_sum / nears, far_sum / fars - 0.1) << mode;
     EXPECT_GT(far_sum / fars, 0.9) << mode;
+    // An upright trunk loses half its sky to the ground, and some more to the crown (0.16
+    // with the exact solid angle).
+    EXPECT_LT(trunk_sum / trunks, 0.5) << mode;
+    EXPECT_GT(trunk_sum / trunks, 0.1) << mode;
   }
 }
 
@@ -236,6 +250,21 @@ TEST(AoObjects, GrassUnderATreeIsAlsoOccludedByTheCrown) {
   double bottom = 0, top = 0;
   expect_grass_matches(r, grass, bottom, top);
   EXPECT_LT(bottom, top);
+}
+
+// The ground plane term is on only for flat ground: not without ground, not for a tilted one.
+TEST(AoObjects, GroundPlaneOnlyForFlatGround) {
+  AoSettings s;
+  s.model = "hegeman-ellipsoid";
+  s.alpha_rho = "0.3";
+  Scene scene = small_tree();
+  EXPECT_FALSE(scene_ao_shading(scene, s, 1).ground_plane);
+  add_ground_plane(scene, glm::vec4(0.5f));
+  const AoShading flat = scene_ao_shading(scene, s, 1);
+  EXPECT_TRUE(flat.ground_plane);
+  EXPECT_EQ(flat.ground_y, scene.meshes.back().positions[1].y);
+  scene.meshes.back().positions[1].y += 0.5f;  // one rim vertex raised: no longer a plane
+  EXPECT_FALSE(scene_ao_shading(scene, s, 1).ground_plane);
 }
 
 TEST(AoObjects, SolidAngleParameter) {
