@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "core/error.h"
 #include "core/gl/gl_context.h"
@@ -79,34 +80,50 @@ Pixels classify_pixels(const Scene& scene, Rasterizer& rasterizer, const AoStudy
 
 // `v` averaged over the class's pixels (mask 1) near each pixel: a Gaussian of `sigma` pixels,
 // normalised by the mask's own blur so other classes and the background do not leak in.
-cv::Mat class_blur(const cv::Mat& v, const cv::Mat& mask, double sigma) {
-  cv::Mat vm, wm;
+cv::Mat class_blur(const cv::Mat& v, const cv::Mat& mask, const cv::Mat& mask_blur, double sigma) {
+  cv::Mat vm, out;
   cv::multiply(v, mask, vm);
   cv::GaussianBlur(vm, vm, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
-  cv::GaussianBlur(mask, wm, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
-  cv::Mat out;
-  cv::divide(vm, cv::max(wm, 1e-6f), out);
+  cv::divide(vm, mask_blur, out);
   return out;
 }
 
+// One class of pixels (foliage or not) and what every row's comparison shares: its mask, the
+// mask's blur (floored above 0) and the reference's trend, made once per study.
+struct PixelClass {
+  const Pixels* px = nullptr;
+  bool foliage = false;
+  double sigma = 0;  // kAoTrendSigma x the frame's shorter side, pixels
+  cv::Mat mask, mask_blur, ref_trend;
+
+  PixelClass(const Pixels& pixels, bool foliage_class, const cv::Mat& ref)
+      : px(&pixels), foliage(foliage_class), sigma(kAoTrendSigma * std::min(ref.cols, ref.rows)) {
+    mask = cv::Mat::zeros(ref.size(), CV_32FC1);
+    auto* m = mask.ptr<float>(0);
+    for (size_t i = 0; i < px->index.size(); ++i)
+      if (bool(px->foliage[i]) == foliage) m[px->index[i]] = 1.0f;
+    cv::GaussianBlur(mask, mask_blur, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
+    mask_blur = cv::max(mask_blur, 1e-6f);
+    ref_trend = class_blur(ref, mask, mask_blur, sigma);
+  }
+};
+
 // The model's AO buffer against the reference over one class of pixels.
-AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const Pixels& px, bool foliage) {
+AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const PixelClass& c) {
   SYLVA_CHECK(ao.type() == CV_32FC1 && ref.type() == CV_32FC1 && ao.size() == ref.size() &&
-                  ao.isContinuous() && ref.isContinuous(),
+                  ao.size() == c.mask.size() && ao.isContinuous() && ref.isContinuous(),
               "AO study: AO buffers are continuous float images of one size");
+  const Pixels& px = *c.px;
   AoPixelError e;
-  cv::Mat mask = cv::Mat::zeros(ao.size(), CV_32FC1);
-  auto* m = mask.ptr<float>(0);
   double sum = 0, sq = 0, abs = 0;
   const auto* a = ao.ptr<float>(0);
   const auto* r = ref.ptr<float>(0);
   for (size_t i = 0; i < px.index.size(); ++i) {
-    if (bool(px.foliage[i]) != foliage) continue;
+    if (bool(px.foliage[i]) != c.foliage) continue;
     const double v = a[px.index[i]], d = v - double(r[px.index[i]]);
     sum += v;
     sq += d * d;
     abs += std::abs(d);
-    m[px.index[i]] = 1.0f;
     ++e.pixels;
   }
   if (e.pixels == 0) return e;
@@ -114,13 +131,12 @@ AoPixelError compare(const cv::Mat& ao, const cv::Mat& ref, const Pixels& px, bo
   e.mean = sum / n;
   e.rmse = std::sqrt(sq / n);
   e.mae = abs / n;
-  const double sigma = kAoTrendSigma * std::min(ao.cols, ao.rows);
-  const cv::Mat ta = class_blur(ao, mask, sigma), tr = class_blur(ref, mask, sigma);
+  const cv::Mat ta = class_blur(ao, c.mask, c.mask_blur, c.sigma);
   const auto* pa = ta.ptr<float>(0);
-  const auto* pr = tr.ptr<float>(0);
+  const auto* pr = c.ref_trend.ptr<float>(0);
   double tsq = 0;
   for (size_t i = 0; i < px.index.size(); ++i) {
-    if (bool(px.foliage[i]) != foliage) continue;
+    if (bool(px.foliage[i]) != c.foliage) continue;
     const double d = double(pa[px.index[i]]) - double(pr[px.index[i]]);
     tsq += d * d;
   }
@@ -250,9 +266,10 @@ AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
     throw InputError("view", "the scene covers no pixel of the " + std::to_string(study.width) +
                                  "x" + std::to_string(study.height) + " frame");
 
+  std::optional<PixelClass> foliage, other;  // made once the reference is traced
   auto finish = [&](AoStudyRow& row, const cv::Mat& ao, const cv::Mat& ref) {
-    row.foliage = compare(ao, ref, px, true);
-    row.nonfoliage = compare(ao, ref, px, false);
+    row.foliage = compare(ao, ref, *foliage);
+    row.nonfoliage = compare(ao, ref, *other);
     if (o.on_run) o.on_run(describe(row));
   };
 
@@ -269,6 +286,8 @@ AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
   for (int i : px.index)
     total += ref.ptr<float>(0)[i];
   study.reference_mean = total / double(px.index.size());
+  foliage.emplace(px, true, ref);
+  other.emplace(px, false, ref);
   finish(ref_row, ref, ref);
 
   // none: the time baseline.

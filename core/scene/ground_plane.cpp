@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sylva {
 
@@ -30,7 +31,7 @@ void add_ground_plane(Scene& scene, const glm::vec4& color) {
   const glm::vec3 centre(s.centre.x, y, s.centre.z);
   m.positions.push_back(centre);
   for (int i = 0; i < kGroundSegments; ++i) {
-    const double a = 2.0 * M_PI * i / kGroundSegments;
+    const double a = 2.0 * std::numbers::pi * i / kGroundSegments;
     m.positions.push_back(
         centre + glm::vec3(float(radius * std::cos(a)), 0.0f, float(radius * std::sin(a))));
   }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "core/gl/depth_range.h"
 #include "core/scene/ground_plane.h"
@@ -65,8 +66,10 @@ TEST(GroundPlane, UnderTheLowestPointSizedByTheFramingRadius) {
     EXPECT_GT(up, 0.0f) << t;
     area += 0.5 * double(up);
   }
-  EXPECT_NEAR(area, 0.5 * double(n) * double(radius) * radius * std::sin(2.0 * M_PI / double(n)),
-              1e-4 * area);
+  EXPECT_NEAR(
+      area,
+      0.5 * double(n) * double(radius) * radius * std::sin(2.0 * std::numbers::pi / double(n)),
+      1e-4 * area);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(g.material, 0);
   EXPECT_EQ(s.materials[0].base_color, glm::vec4(0.5f, 0.4f, 0.3f, 1.0f));
