@@ -100,6 +100,7 @@ Action add_render_command(CLI::App& app) {
     std::string style = "standard";
     std::vector<std::string> sets;
     std::string out, graph;
+    double dpi = 0.0;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene in a style to an image");
@@ -108,20 +109,33 @@ Action add_render_command(CLI::App& app) {
   add_illumination_options(*cmd, o->illumination);
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
-  cmd->add_option("-o,--output", o->out, "Output image (.png or .jpg)")->required();
+  cmd->add_option("-o,--output", o->out,
+                  "Output image (.png or .jpg), or vector lines (.svg or .pdf) of a line style")
+      ->required();
+  cmd->add_option("--dpi", o->dpi,
+                  "Pixels per inch of .svg/.pdf output: its page size in mm/points (0 = px, "
+                  "and one point per px in PDF); [0, 10000]")
+      ->capture_default_str();
   return [o, cmd] {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
-    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg"});
+    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg", ".svg", ".pdf"});
+    const bool vector = is_vector_path(o->out);
+    if (vector) require_line_style(*style, "--style");
+    check_dpi(o->dpi, "--dpi");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view);
     RenderGraph graph;
-    const SheetPlan plan =
-        add_sheet_passes(graph, {style.get()}, sheet_scene(*frame, o->illumination, o->scene.seed));
+    const SheetPlan plan = add_sheet_passes(
+        graph, {style.get()}, sheet_scene(*frame, o->illumination, o->scene.seed), vector);
     graph.compile();
     write_graph(o->graph, graph);
     graph.execute();
     release_frame(frame);
-    write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]));
+    if (vector)
+      write_vector_drawing(o->out, graph.get<StrokeDrawing>(plan.strokes[0]),
+                           vector_page(*style, o->view, o->dpi));
+    else
+      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]));
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
                 style->info().name.c_str());
   };
@@ -184,6 +198,9 @@ Action add_buffers_command(CLI::App& app) {
         normals->count() > 0 ? parse_normal_mode(o->normals, "--normals") : style->normals();
     auto frame = prepare_frame(o->scene, o->view);
     frame->setup.request.flat_albedo = style->params().albedo == "flat";  // ids follow --id
+    // The style's picture-scale rho (ink.detail), as its render would use.
+    o->illumination.picture_rho =
+        style->foliage_settings(frame->setup.camera, frame->scene.framing_sphere()).picture_rho;
     RenderGraph graph;
     GBufferHandles gb =
         add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode, style->params().ao);

@@ -2,10 +2,16 @@
 
 #include <malloc.h>
 
+#include <filesystem>
 #include <opencv2/imgproc.hpp>
 
+#include "core/error.h"
 #include "core/gl/depth_range.h"
 #include "core/io/image_io.h"
+#include "core/io/pdf_writer.h"
+#include "styles/presets.h"
+
+namespace fs = std::filesystem;
 
 namespace sylva::cli {
 
@@ -67,6 +73,45 @@ SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint6
     return illumination_setup(io, seed, *scene);
   };
   return s;
+}
+
+bool is_vector_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".svg" || ext == ".pdf";
+}
+
+void require_line_style(const Style& style, const std::string& option) {
+  if (style.has_strokes()) return;
+  std::string names;
+  for (const std::string& n : builtin_preset_names())
+    if (Style(n).has_strokes()) names += (names.empty() ? "" : ", ") + n;
+  throw InputError(option, "style '" + style.info().name +
+                               "' draws no lines, so it has no vector output (.svg, .pdf); "
+                               "styles made of lines: " +
+                               names + ", or a preset inheriting them");
+}
+
+VectorPage vector_page(const Style& style, const ViewOptions& view, double dpi) {
+  VectorPage page;
+  page.dpi = dpi;
+  const InkParams& ink = style.params().ink;
+  if (ink.transparent || view.background == "transparent")
+    page.paper.reset();
+  else
+    page.paper = ink.paper.color;
+  return page;
+}
+
+void write_vector_drawing(const std::string& path, const StrokeDrawing& d, const VectorPage& page) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".pdf")
+    write_pdf(path, d, page);
+  else
+    write_svg(path, d, page);
 }
 
 void write_styled_image(const std::string& path, const cv::Mat& bgra) {

@@ -11,6 +11,7 @@
 #include "cli/common_options.h"
 #include "cli/illumination_options.h"
 #include "core/gl/raster_pass.h"
+#include "core/io/svg_writer.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
 
@@ -45,5 +46,15 @@ SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint6
 
 // Writes a style's BGRA image as .png (with alpha) or .jpg (alpha dropped), atomically.
 void write_styled_image(const std::string& path, const cv::Mat& bgra);
+
+// Vector output (.svg, .pdf): whether `path` asks for it; InputError(option, ...) naming the
+// styles that can when `style` draws no strokes.
+bool is_vector_path(const std::string& path);
+void require_line_style(const Style& style, const std::string& option);
+// The page of a style's vector drawing: its paper (ink.paper_color; none when ink.transparent
+// or the view's background is "transparent") and the dpi.
+VectorPage vector_page(const Style& style, const ViewOptions& view, double dpi);
+// Writes a drawing as .svg or .pdf (by the extension), atomically.
+void write_vector_drawing(const std::string& path, const StrokeDrawing& d, const VectorPage& page);
 
 }  // namespace sylva::cli

@@ -76,6 +76,7 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
   s.scene = &scene;
   FoliageParams& p = s.params;
   p.rho = SceneLength::parse(o.rho, "--rho");
+  p.picture_rho = o.picture_rho;
   if (auto tau = auto_or_number(o.tau, "--tau")) {
     if (*tau < 0.0) throw InputError("--tau", "must be 'auto' or a density >= 0");
     p.tau = float(*tau);

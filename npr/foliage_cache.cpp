@@ -47,6 +47,7 @@ std::string foliage_cache_key(const Scene& scene, const FoliageParams& p) {
   }
   h.add(uint8_t(p.rho.kind));
   h.add(p.rho.value);
+  h.add(p.picture_rho);
   add_optional(h, p.tau.has_value(), p.tau.value_or(0.0f));
   add_optional(h, p.fraction.has_value(), p.fraction.value_or(0.0));
   h.add(uint8_t(p.per_triangle));

@@ -104,7 +104,8 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
   const double diag = std::max<double>(fb.diagonal(), 1e-30);
   const glm::dvec3 ext = glm::max(glm::dvec3(fb.max - fb.min), glm::dvec3(0.01 * diag));
   const double spacing = std::cbrt(ext.x * ext.y * ext.z / double(std::max<size_t>(st.leaves, 1)));
-  st.rho = p.rho.resolve(diag, std::max(0.08 * diag, 3.0 * spacing));
+  const double automatic = p.picture_rho > 0.0 ? p.picture_rho : 0.08 * diag;
+  st.rho = p.rho.resolve(diag, std::max(automatic, 3.0 * spacing));
   if (!(st.rho > 0.0) || !std::isfinite(st.rho)) throw InputError("rho", "must be > 0");
   const float rho = float(st.rho);
 

@@ -30,6 +30,10 @@ struct FoliageParams {
   // Radius of influence rho; auto = max(8% of the foliage diagonal, 3 x the mean leaf
   // spacing), relative values are % of the foliage bounding-box diagonal.
   SceneLength rho;
+  // When > 0 (scene units), rho = auto becomes max(picture_rho, 3 x the mean leaf spacing):
+  // the radius set by a style's picture scale (ink.detail, passes/ink_lines.h), so the
+  // realigned normals are smooth at the scale the picture draws.
+  double picture_rho = 0.0;
   // Threshold tau >= 0 (density units); nullopt = auto: half the 10th percentile of the
   // summed kernels at the generators, so the surface wraps nearly every leaf.
   std::optional<float> tau;

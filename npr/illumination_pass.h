@@ -36,6 +36,9 @@ struct FoliageSettings {
   int smooth = 0;
   float decimate = 1.0f;
   bool per_triangle = false;
+  // Not a preset key: rho = auto's radius from the picture's scale (FoliageParams::
+  // picture_rho), set by styles with ink.detail; 0 = none.
+  double picture_rho = 0.0;
   // Not preset keys: where the run writes and caches.
   std::string surface_out;
   bool no_cache = false;

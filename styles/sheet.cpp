@@ -49,12 +49,13 @@ std::string ao_key(const Style& style) {
 }
 
 // What a style asks of the raster pass, as a comparable text.
-std::string raster_key(const Style& style, const RasterRequest& request, NormalMode mode) {
+std::string raster_key(const Style& style, const RasterRequest& request, NormalMode mode,
+                       const std::string& foliage) {
   std::ostringstream k;
   k << static_cast<int>(mode) << '|' << request.flat_albedo << '|'
     << static_cast<int>(request.id_kind) << '|' << request.background.r << ','
     << request.background.g << ',' << request.background.b << ',' << request.background.a;
-  if (mode != NormalMode::Original) k << '|' << foliage_key(style);
+  if (mode != NormalMode::Original) k << '|' << foliage;
   if (style.params().ao.model != "none") k << '|' << ao_key(style);
   return k.str();
 }
@@ -135,7 +136,7 @@ std::vector<std::string> changed_parameters(const Style& style,
 }
 
 SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
-                           const SheetScene& scene) {
+                           const SheetScene& scene, bool present_strokes) {
   SYLVA_CHECK(!styles.empty(), "add_sheet_passes: no styles");
   const bool scoped = styles.size() > 1;
   auto scope = [&](const std::string& name) {
@@ -154,12 +155,14 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
     // Declared for every style, so compile() is what culls the preprocessing of styles that
     // keep the model's normals (and the graph's .dot shows it culled).
-    const std::string fkey = foliage_key(style);
+    const FoliageSettings settings =
+        style.foliage_settings(scene.raster.camera, scene.scene_sphere);
+    const std::string fkey = foliage_key(style) + std::to_string(settings.picture_rho);
     if (!foliage.contains(fkey)) {
       auto s = scope("foliage-" + std::to_string(foliage.size()));
-      foliage[fkey] = add_foliage_illumination_pass(graph, scene.foliage(style.params().foliage));
+      foliage[fkey] = add_foliage_illumination_pass(graph, scene.foliage(settings));
     }
-    const std::string rkey = raster_key(style, setup.request, mode);
+    const std::string rkey = raster_key(style, setup.request, mode, fkey);
     if (!rasters.contains(rkey)) {
       if (mode != NormalMode::Original) setup.shading = foliage[fkey];
       // Only styles with AO read (and so run) the shell fitting; model none adds no node.
@@ -199,9 +202,11 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.branch_cluster = scene.branch_cluster;
     context.blobs = scene.blobs;
     auto s = scope("cell-" + std::to_string(i));
-    const int out = style.build(graph, rasters[rkey], context);
-    graph.present(out);
-    plan.outputs.push_back(out);
+    const StyleOutput out = style.build(graph, rasters[rkey], context);
+    graph.present(out.image);
+    if (present_strokes && out.strokes >= 0) graph.present(out.strokes);
+    plan.outputs.push_back(out.image);
+    plan.strokes.push_back(present_strokes ? out.strokes : -1);
     plan.gbuffers.push_back(rasters[rkey]);
   }
   plan.raster_passes = static_cast<int>(rasters.size());

@@ -67,6 +67,9 @@ struct SheetScene {
 
 struct SheetPlan {
   std::vector<int> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented
+  // per style: its StrokeDrawing (StyleOutput::strokes), presented with `present_strokes`,
+  // else -1
+  std::vector<int> strokes;
   std::vector<GBufferHandles> gbuffers;  // per style: the raster pass it reads
   int raster_passes = 0;                 // distinct raster configurations
   int foliage_passes = 0;                // Luft preprocessings that run (distinct settings read)
@@ -76,7 +79,9 @@ struct SheetPlan {
 // nothing is scoped (pass names as in a plain render); with several, style i's passes live
 // in scope "cell-i", raster configuration j in "raster-j", foliage settings k in
 // "foliage-k", AO settings m in "ao-m".
+// With present_strokes, the StrokeDrawing of every style made of lines is presented too (for
+// vector output).
 SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
-                           const SheetScene& scene);
+                           const SheetScene& scene, bool present_strokes = false);
 
 }  // namespace sylva

@@ -3,13 +3,14 @@
 #include "core/error.h"
 #include "passes/background.h"
 #include "passes/blobs.h"
+#include "passes/pass_common.h"
 #include "styles/blob_raster.h"
 
 namespace sylva {
 
-int build_shaded(RenderGraph&, const GBufferHandles& gbuffer, const StyleParams&,
-                 const StyleContext&) {
-  return gbuffer.color;
+StyleOutput build_shaded(RenderGraph&, const GBufferHandles& gbuffer, const StyleParams&,
+                         const StyleContext&) {
+  return {gbuffer.color};
 }
 
 namespace {
@@ -53,8 +54,8 @@ int add_key_shadow_pass(RenderGraph& graph, const StyleContext& context, int siz
 
 }  // namespace
 
-int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-               const StyleContext& context) {
+StyleOutput build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                       const StyleContext& context) {
   validate_toon_params(params.toon);
   ToonResources r;
   r.normal = gbuffer.normal;
@@ -63,27 +64,41 @@ int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StylePar
   r.position = gbuffer.position;
   if (params.toon.cast_shadows)
     r.shadow = add_key_shadow_pass(graph, context, params.toon.shadow_map_size);
-  return add_background_pass(graph,
-                             add_toon_pass(graph, r, context.lighting, context.view, params.toon),
-                             context.background);
+  return {add_background_pass(graph,
+                              add_toon_pass(graph, r, context.lighting, context.view, params.toon),
+                              context.background)};
 }
 
-int build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-              const StyleContext&) {
-  EdgeResources e;
-  e.normal = gbuffer.normal;
-  e.depth = gbuffer.depth;
-  e.id = gbuffer.id;
-  const int lines = add_edges_pass(graph, e, params.edges);
+StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                      const StyleContext& context) {
+  InkLineResources r;
+  r.color = gbuffer.color;
+  r.depth = gbuffer.depth;
+  r.normal = gbuffer.normal;
+  r.id = gbuffer.id;
+  int strokes = add_ink_lines_pass(graph, r, params.edges, params.lines, context.branch_cluster);
+  if (params.pen.enabled()) {
+    validate_pen_params(params.pen);
+    ToneResources t;
+    t.position = gbuffer.position;
+    t.id = gbuffer.id;
+    t.color = gbuffer.color;
+    ToneView view;
+    view.view = context.view;
+    view.units_per_px = units_per_px(context.camera, context.scene_sphere);
+    const int tone = add_tone_pass(graph, t, view, params.pen, params.lines.detail);
+    strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
+  }
+  const int lines = add_stroke_raster_pass(graph, strokes);
   InkParams ink = params.ink;
   ink.line_color = params.edges.color;
   // The colour target is drawn on a transparent clear for ink (Style::configure), so its
   // alpha is the coverage the composite needs, and its colour the wash.
-  return add_ink_composite_pass(graph, lines, gbuffer.color, ink);
+  return {add_ink_composite_pass(graph, lines, gbuffer.color, ink), strokes};
 }
 
-int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-                     const StyleContext& context) {
+StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
+                             const StyleParams& params, const StyleContext& context) {
   WatercolorParams p = params.watercolor;
   p.reference_length = context.foliage_diagonal;
   WatercolorResources r;
@@ -92,11 +107,11 @@ int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const St
   r.id = gbuffer.id;
   r.depth = gbuffer.depth;
   r.position = gbuffer.position;
-  return add_watercolor_pass(graph, r, glm::inverse(context.view), p);
+  return {add_watercolor_pass(graph, r, glm::inverse(context.view), p)};
 }
 
-int build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-                const StyleContext& context) {
+StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
+                        const StyleParams& params, const StyleContext& context) {
   const BlobParams& p = params.blobs;
   validate_blob_params(p);
   int outlines = -1;
@@ -139,13 +154,14 @@ int build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer, const StylePa
   frame.view = context.view;
   frame.background = context.background;
   frame.branch_cluster = context.branch_cluster;
-  return add_blobs_pass(graph, outlines, r, frame, p);
+  return {add_blobs_pass(graph, outlines, r, frame, p)};
 }
 
 const std::vector<StyleBuilder>& builder_table() {
   static const std::vector<StyleBuilder> table = {
       {"shaded", "local illumination (Luft et al. Eq. 1) from the raster pass", &build_shaded},
-      {"ink", "lines from depth, normal and id discontinuities over paper", &build_ink},
+      {"ink", "strokes of the line hierarchy, abstracted to the picture's scale, over paper",
+       &build_ink, IdKind::Cluster},
       {"toon", "cartoon shading in k bands of N.L (Decaudin)", &build_toon},
       {"watercolor", "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
        &build_watercolor, IdKind::Cluster},
@@ -171,6 +187,15 @@ Style::Style(const std::string& name_or_path, const std::vector<std::string>& ov
     apply_assignment(a, m_set, "--set");
 }
 
+FoliageSettings Style::foliage_settings(const Camera& camera, const Sphere& sphere) const {
+  FoliageSettings s = m_params.foliage;
+  if (has_strokes() && m_params.lines.detail > 0.0f && camera.height > 0) {
+    const double scale = reference_scale(cv::Size(camera.width, camera.height));
+    s.picture_rho = 3.0 * m_params.lines.detail * scale * units_per_px(camera, sphere);
+  }
+  return s;
+}
+
 NormalMode Style::normals() const {
   return parse_normal_mode(m_params.normals, "style.normals");
 }
@@ -183,8 +208,12 @@ void Style::configure(RasterRequest& request) const {
   if (m_info.builder == "ink" || m_info.builder == "blobs") request.background.a = 0.0f;
 }
 
-int Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,
-                 const StyleContext& context) const {
+bool Style::has_strokes() const {
+  return m_info.builder == "ink";
+}
+
+StyleOutput Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,
+                         const StyleContext& context) const {
   return find_builder(m_info.builder, m_info.source).build(graph, gbuffer, m_params, context);
 }
 

@@ -38,11 +38,18 @@ struct StyleContext {
   std::shared_ptr<const BlobSet> blobs;
 };
 
+// What a style adds to the graph: its final image (CV_8UC4 BGRA sRGB) and, for styles made of
+// lines, the StrokeDrawing (core/strokes.h) the image's lines are drawn from (-1 = none).
+struct StyleOutput {
+  int image = -1;
+  int strokes = -1;
+};
+
 struct StyleBuilder {
   std::string name;
   std::string description;
-  int (*build)(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-               const StyleContext& context);
+  StyleOutput (*build)(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                       const StyleContext& context);
   IdKind ids = IdKind::Primitive;  // what the id buffer holds for this builder
 };
 
@@ -52,29 +59,31 @@ const StyleBuilder& find_builder(const std::string& name, const std::string& whe
 
 // shaded: Luft et al. Eq. 1 local illumination straight from the raster pass's colour
 // target, with whatever normals style.normals selects (standard, expressive).
-int build_shaded(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-                 const StyleContext& context);
+StyleOutput build_shaded(RenderGraph& graph, const GBufferHandles& gbuffer,
+                         const StyleParams& params, const StyleContext& context);
 
 // toon: Decaudin's cartoon shading of the albedo in k bands of N.L (passes/toon.h); with
 // toon.cast_shadows, a depth-only raster pass from the key light (graph scope "key-shadow")
 // makes the shadow map.
-int build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-               const StyleContext& context);
+StyleOutput build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                       const StyleContext& context);
 
-// ink: lines from depth, normal and id discontinuities (passes/edges.h) drawn over paper
-// (passes/composite.h), optionally over a wash of the shaded colour.
-int build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-              const StyleContext& context);
+// ink: the line hierarchy as strokes (passes/ink_lines.h: silhouette, interior crown contours,
+// wood, detail, abstracted to ink.detail), rasterised and drawn over paper
+// (passes/composite.h), optionally over a wash of the shaded colour; the id buffer holds
+// cluster ids (wood = the branch cluster).
+StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
+                      const StyleContext& context);
 
 // watercolor: a glazed wash per leaf cluster (Bousseau et al. 2006; Luft & Deussen 2006),
 // passes/watercolor.h; the id buffer holds cluster ids.
-int build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-                     const StyleContext& context);
+StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
+                             const StyleParams& params, const StyleContext& context);
 
 // blobs: Dudley's shrink-wrapped blob billboards (passes/blobs.h), one per leaf cluster, over
 // the trunk and branches; the id buffer holds cluster ids.
-int build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
-                const StyleContext& context);
+StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
+                        const StyleParams& params, const StyleContext& context);
 
 // A preset resolved into parameters. Not copyable: `set` refers into `params`.
 class Style {
@@ -91,10 +100,17 @@ class Style {
   ParamSet& set() { return m_set; }
   const ParamSet& set() const { return m_set; }
   NormalMode normals() const;
+  // foliage.* for a frame of `camera` framing `sphere`: with ink.detail > 0 (line styles), rho
+  // = auto takes its radius from the picture's scale, 3 x ink.detail px at the sphere's
+  // centre (FoliageSettings::picture_rho), so the realigned normals are smooth at the scale
+  // the lines draw.
+  FoliageSettings foliage_settings(const Camera& camera, const Sphere& sphere) const;
   // What this style needs of the raster pass besides the targets it reads: the id kind and
   // flat albedo.
   void configure(RasterRequest& request) const;
-  int build(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleContext& context) const;
+  StyleOutput build(RenderGraph& graph, const GBufferHandles& gbuffer,
+                    const StyleContext& context) const;
+  bool has_strokes() const;  // whether build() gives a StrokeDrawing (styles made of lines)
 
  private:
   StyleParams m_params;

@@ -11,6 +11,8 @@ void bind_style_params(ParamSet& set, StyleParams& p) {
   bind_ao_params(set, p.ao);
   bind_edge_params(set, p.edges);
   bind_ink_params(set, p.ink);
+  bind_ink_line_params(set, p.lines);
+  bind_pen_params(set, p.pen);
   bind_toon_params(set, p.toon);
   bind_watercolor_params(set, p.watercolor);
   bind_blob_params(set, p.blobs);

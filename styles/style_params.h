@@ -12,6 +12,8 @@
 #include "passes/blobs.h"
 #include "passes/composite.h"
 #include "passes/edges.h"
+#include "passes/hatching.h"
+#include "passes/ink_lines.h"
 #include "passes/toon.h"
 #include "passes/watercolor.h"
 
@@ -27,6 +29,8 @@ struct StyleParams {
   AoSettings ao;  // ao.*: ambient occlusion (npr/ao_pass.h)
   EdgeParams edges;
   InkParams ink;
+  InkLineParams lines;  // ink.detail and lines.*: the ink style's line hierarchy
+  PenParams pen;        // pen.*: tone drawn with strokes (the pen preset)
   ToonParams toon;
   WatercolorParams watercolor;
   BlobParams blobs;

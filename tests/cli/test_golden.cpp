@@ -85,7 +85,7 @@ TEST(Golden, Presets) {
                              {"bush", "sample:bush", ""},
                              {"conifer", "sample:conifer", ""},
                              {"fern", "assets/polyhaven_fern_02.glb", " --elevation 35"}};
-  for (const char* style : {"expressive", "ink", "toon", "watercolor", "blobs"})
+  for (const char* style : {"expressive", "ink", "pen", "toon", "watercolor", "blobs"})
     for (const auto& s : scenes) {
       const std::string name = std::string(s[0]) + "-" + style;
       const std::string args = std::string("--size 256 --ssaa 2 --style ") + style + s[2];

@@ -75,7 +75,7 @@ void frame(Rig& r, bool raster_only) {
     for (int t : {gb.color, gb.albedo, gb.id, gb.depth})
       graph.present(t);
   } else {
-    out = r.style.build(graph, gb, context);
+    out = r.style.build(graph, gb, context).image;
     graph.present(out);
   }
   graph.execute();

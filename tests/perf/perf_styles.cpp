@@ -109,7 +109,7 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.rasterizer = r.raster.get();  // toon.cast_shadows renders the key light's shadow map
   context.scene_sphere = r.scene.framing_sphere();
   context.camera = setup.camera;
-  const int out = name == "raster" ? gb.color : style.build(graph, gb, context);
+  const int out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
   graph.present(out);
   graph.execute();
   benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
@@ -180,7 +180,7 @@ void render_card_command(const CardFiles& files, const Style& style) {
   context_info.view = setup.camera.view;
   context_info.background = setup.request.background;
   context_info.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
-  const int out = style.build(graph, gb, context_info);
+  const int out = style.build(graph, gb, context_info).image;
   graph.present(out);
   graph.execute();
   write_image(files.png.string(), graph.get<cv::Mat>(out));

@@ -130,7 +130,7 @@ TEST(Sheet, CellsShareBuffersAndPreprocessingAndMatchTheirRenders) {
   EXPECT_EQ(rig.foliage_calls, 4);
   EXPECT_TRUE(graph.pass_live("foliage-0/foliage-illumination"));
   EXPECT_FALSE(graph.pass_live("foliage-3/foliage-illumination"));
-  EXPECT_TRUE(graph.pass_live("cell-1/edges"));
+  EXPECT_TRUE(graph.pass_live("cell-1/ink-strokes"));
   graph.execute();
   for (size_t i = 0; i < list.size(); ++i) {
     const cv::Mat& cell = graph.get<cv::Mat>(plan.outputs[i]);

@@ -18,7 +18,7 @@ TEST(Styles, StandardNeverAllocatesTheIdTarget) {
   StyleRig s;
   RenderGraph graph;
   GBufferHandles gb = add_raster_pass(graph, s.rs);
-  int out = Style("standard").build(graph, gb, StyleContext{});
+  int out = Style("standard").build(graph, gb, StyleContext{}).image;
   graph.present(out);
   graph.compile();
   EXPECT_FALSE(graph.is_live(gb.id));
@@ -59,7 +59,7 @@ TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
     StyleContext context;
     context.lighting = s.rs.lighting;
     context.view = s.rs.camera.view;
-    const int out = style.build(graph, gb, context);
+    const int out = style.build(graph, gb, context).image;
     graph.present(out);
     graph.execute();
     const TargetMask drawn = s.raster->last_allocated_targets();
@@ -95,7 +95,7 @@ TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
     RasterSetup rs = s.rs;
     if (style.normals() != NormalMode::Original) rs.shading = shading;
     const GBufferHandles gb = add_raster_pass(graph, rs);
-    graph.present(style.build(graph, gb, StyleContext{}));
+    graph.present(style.build(graph, gb, StyleContext{}).image);
     graph.compile();
     EXPECT_EQ(graph.pass_live("foliage-illumination"), k == 1) << style.info().name;
     graph.present(gb.ka);  // a second compile with the ka target added, for the check

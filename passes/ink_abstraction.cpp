@@ -1,0 +1,115 @@
+#include "passes/ink_abstraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+
+namespace sylva {
+
+namespace {
+
+cv::Mat disc(double diameter) {
+  const int k = std::max(1, static_cast<int>(std::lround(diameter)) | 1);
+  return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
+}
+
+// The connected pieces (8-neighbours) of `parts` whose bounding box's diagonal is >= length.
+cv::Mat long_pieces(const cv::Mat& parts, double length) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(parts, labels, stats, centroids, 8, CV_32S);
+  std::vector<uint8_t> keep(size_t(std::max(n, 1)), 0);
+  for (int i = 1; i < n; ++i) {
+    const double w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+    keep[size_t(i)] = std::hypot(w, h) >= length ? 255 : 0;
+  }
+  cv::Mat out(parts.size(), CV_8UC1);
+  for (int y = 0; y < parts.rows; ++y) {
+    const int* l = labels.ptr<int>(y);
+    uint8_t* o = out.ptr<uint8_t>(y);
+    for (int x = 0; x < parts.cols; ++x)
+      o[x] = keep[size_t(l[x])];
+  }
+  return out;
+}
+
+}  // namespace
+
+CrownShape crown_shape(const cv::Mat& plant, double detail) {
+  SYLVA_CHECK(plant.type() == CV_8UC1, "crown_shape: CV_8UC1 coverage");
+  CrownShape shape;
+  shape.body = plant != 0;
+  if (detail < 2.0) {
+    shape.thin = cv::Mat(plant.size(), CV_8UC1, cv::Scalar(0));
+    return shape;
+  }
+  const cv::Mat k = disc(detail);
+  cv::Mat closed;
+  // Constant borders: the frame's edge neither grows nor eats the plant.
+  cv::morphologyEx(shape.body, closed, cv::MORPH_CLOSE, k, {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+  cv::morphologyEx(closed, shape.body, cv::MORPH_OPEN, k, {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+  shape.thin = long_pieces(closed & ~shape.body, 2.0 * detail);
+  return shape;
+}
+
+cv::Mat median_depth(const cv::Mat& depth, const cv::Mat& plant, double window, float& near,
+                     float& far) {
+  SYLVA_CHECK(depth.type() == CV_32FC1 && plant.type() == CV_8UC1 && depth.size() == plant.size(),
+              "median_depth: CV_32FC1 depth and CV_8UC1 coverage of one size");
+  near = far = 0.0f;
+  double lo = 0, hi = 0;
+  if (cv::countNonZero(plant) > 0) cv::minMaxLoc(depth, &lo, &hi, nullptr, nullptr, plant);
+  near = static_cast<float>(lo);
+  far = static_cast<float>(hi);
+  const float scale = far > near ? 253.0f / (far - near) : 0.0f;
+  cv::Mat q(depth.size(), CV_8UC1);
+  for (int y = 0; y < depth.rows; ++y) {
+    const float* z = depth.ptr<float>(y);
+    const uint8_t* m = plant.ptr<uint8_t>(y);
+    uint8_t* o = q.ptr<uint8_t>(y);
+    for (int x = 0; x < depth.cols; ++x)
+      o[x] = m[x] != 0
+                 ? static_cast<uint8_t>(1.0f + std::clamp((z[x] - near) * scale, 0.0f, 253.0f))
+                 : kNoDepth;
+  }
+  const int k = std::max(3, static_cast<int>(std::lround(window)) | 1);
+  cv::Mat median;
+  cv::medianBlur(q, median, k);
+  return median;
+}
+
+cv::Mat majority_labels(const cv::Mat& labels, int radius) {
+  SYLVA_CHECK(labels.type() == CV_32SC1 && radius >= 0, "majority_labels: CV_32SC1 labels");
+  cv::Mat out = labels.clone();
+  std::vector<std::pair<int, int>> counts;  // label, count
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) {
+      const int own = labels.at<int>(y, x);
+      if (own == 0) continue;
+      counts.clear();
+      for (int v = std::max(0, y - radius); v <= std::min(labels.rows - 1, y + radius); ++v)
+        for (int u = std::max(0, x - radius); u <= std::min(labels.cols - 1, x + radius); ++u) {
+          const int l = labels.at<int>(v, u);
+          if (l == 0) continue;
+          auto it = std::find_if(counts.begin(), counts.end(),
+                                 [l](const std::pair<int, int>& c) { return c.first == l; });
+          if (it == counts.end())
+            counts.emplace_back(l, 1);
+          else
+            ++it->second;
+        }
+      int best = own, most = 0;
+      for (const auto& [l, n] : counts)
+        if (n > most || (n == most && l != best && best != own && l < best)) {
+          best = l;
+          most = n;
+        } else if (n == most && l == own) {
+          best = own;
+        }
+      out.at<int>(y, x) = best;
+    }
+  return out;
+}
+
+}  // namespace sylva

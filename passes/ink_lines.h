@@ -1,0 +1,101 @@
+// Ink lines as strokes (issue "Ink for illustrators"; DESIGN.md §6): the G-buffer's feature
+// lines, abstracted to the picture's scale, sorted into the line hierarchy and chained into
+// strokes (core/strokes.h) from which the raster ink and the vector files are drawn.
+//
+// Abstraction (Deussen & Strothotte 2000: draw a tree at the level of detail the picture can
+// hold). ink.detail is the smallest feature drawn, in px at the 1024 px reference:
+//   - silhouette: the plant's coverage closed and then opened by a disc of that diameter (gaps
+//     and bumps smaller than it vanish); thin parts the opening removes are kept when they are
+//     long (a hanging strand, a twig: extent >= 2 x detail), so the outline of the plant at the
+//     picture's scale, traced as closed contours;
+//   - interior crown contours: where one part of the crown stands in front of another, found
+//     on the depth median-filtered over a window of that size (leaf-sized depth noise
+//     vanishes, steps between crown parts stay) as jumps larger than a share of the plant's
+//     depth extent that grows with the detail (detail / 256, Deussen & Strothotte's depth
+//     threshold relative to the picture);
+//   - wood: trunk and branch outlines on the raw buffers where the wood is the nearer side;
+//   - detail: leaf-level depth jumps on the raw buffers (off in the built-in presets).
+// Each chain is smoothed along its length (Gaussian, sigma = detail / 4 px for silhouettes and
+// interior lines, 0.7 px for wood and detail, which removes the pixel staircase), simplified
+// (Douglas-Peucker, 0.5 px) and dropped when shorter than 2 x detail (silhouette, interior)
+// or 1 x detail (wood, detail), and than edges.min_length. ink.detail = 0 keeps the leaf-exact
+// lines: silhouette = coverage, interior = the raw depth, normal and id discontinuities of
+// edges.*.
+//
+// Reads (render graph): "color" (CV_8UC4, alpha = coverage), "depth" (CV_32FC1 linear view
+// depth, 0 = background), "normal" (CV_32FC3, only with edges.normal at ink.detail = 0), "id"
+// (CV_32SC1 cluster ids: wood = the scene's branch cluster). Writes "ink-strokes", a
+// StrokeDrawing at the frame's size.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+
+#include "core/graph/render_graph.h"
+#include "core/params.h"
+#include "core/strokes.h"
+#include "passes/edges.h"
+
+namespace sylva {
+
+// One class of the line hierarchy: lines.<class>, lines.<class>_width, _tone, _taper,
+// _depth_width.
+struct LineClassParams {
+  bool on = true;
+  // px at the 1024 px reference (x reference_scale), no thinner than edges.min_width px.
+  // Range [0.25, 16].
+  float width = 1.5f;
+  // opacity of the class's ink, [0, 1]: 1 = full ink, 0.5 = a grey line on white.
+  float tone = 1.0f;
+  // px at 1024 px over which an open stroke narrows to nothing at each end (at most half its
+  // length); 0 = blunt round ends. Range [0, 256].
+  float taper = 0.0f;
+  // nearest lines this many times wider than the farthest (linear in depth over the plant's
+  // depth range); 1 = even. Range [1, 8].
+  float depth_width = 1.0f;
+};
+
+struct InkLineParams {
+  // ink.detail: the smallest feature drawn, px at the 1024 px reference (scales with the image
+  // like edges.width). 0 = leaf-exact lines. Range [0, 64]; default 10.
+  float detail = 10.0f;
+  LineClassParams silhouette{true, 2.4f, 1.0f, 0.0f, 1.0f};
+  LineClassParams interior{true, 1.6f, 1.0f, 0.0f, 1.0f};
+  LineClassParams wood{true, 1.6f, 1.0f, 0.0f, 1.0f};
+  LineClassParams detail_lines{false, 0.8f, 0.6f, 0.0f, 1.0f};
+  const LineClassParams& of(LineClass c) const;
+};
+
+// Binds ink.detail and lines.* with ranges, units and docs. `set` refers into `p`.
+void bind_ink_line_params(ParamSet& set, InkLineParams& p);
+
+struct InkLineImages {
+  cv::Mat color;   // CV_8UC4, alpha = coverage
+  cv::Mat depth;   // CV_32FC1
+  cv::Mat normal;  // CV_32FC3 or empty (needed only for edges.normal at detail 0)
+  cv::Mat id;      // CV_32SC1 cluster ids, or empty (no wood class then)
+};
+
+// The strokes of one frame. branch_cluster: the cluster id of trunk and branches (0 = none).
+// edges: the kinds and thresholds of the leaf-level lines, edges.min_width, edges.min_length
+// and edges.color (the drawing's colour).
+StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
+                               const InkLineParams& p, uint32_t branch_cluster);
+
+struct InkLineResources {
+  int color = -1, depth = -1, normal = -1, id = -1;
+};
+
+// Adds the pass "ink-strokes" and returns its output "ink-strokes" (StrokeDrawing).
+int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgeParams& edges,
+                       const InkLineParams& p, uint32_t branch_cluster);
+
+// Adds the pass "drawing" and returns its output "drawing": the StrokeDrawing `first` with the
+// strokes of `second` drawn after (over) them.
+int add_merge_strokes_pass(RenderGraph& g, int first, int second);
+
+// Adds the pass "stroke-raster" reading a StrokeDrawing resource and returns "lines", its ink
+// coverage (CV_32FC1 in [0, 1], core/stroke_render.h).
+int add_stroke_raster_pass(RenderGraph& g, int strokes);
+
+}  // namespace sylva
