@@ -143,6 +143,8 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
   const std::array<float, 256>& decode = decode_lut();
   const cv::Vec3f line(p.line_color.b, p.line_color.g, p.line_color.r);
   const std::vector<uint8_t>& encode_table = encode_lut();
+  const cv::Vec3f line8(encode(encode_table, line[0]), encode(encode_table, line[1]),
+                        encode(encode_table, line[2]));
   cv::Mat out(size, CV_8UC4);
   // Rows in parallel: every pixel depends only on its inputs.
   for_bands(size.height, [&](int y0, int y1) {
@@ -161,17 +163,18 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
         for (int k = 0; k < 3; ++k)
           ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
         const float ink = std::clamp(l[x], 0.0f, 1.0f);
-        cv::Vec3f rgb;
-        float alpha = 1.0f;
-        if (!p.transparent) {
-          rgb = ground * (1.0f - ink) + line * ink;
-        } else {
+        // The lines go over the ground in sRGB-encoded values, as SVG and PDF renderers
+        // composite, so the raster ink and the vector files look the same.
+        float alpha = 1.0f, keep = 1.0f - ink;
+        if (p.transparent) {
           // Straight alpha: lines over the ground, which covers only the drawing.
           alpha = ink + a * (1.0f - ink);
-          rgb = alpha > 0.0f ? (line * ink + ground * (a * (1.0f - ink))) / alpha : ground;
+          keep = alpha > 0.0f ? a * (1.0f - ink) / alpha : 1.0f;
         }
-        o[x] = cv::Vec4b(encode(encode_table, rgb[0]), encode(encode_table, rgb[1]),
-                         encode(encode_table, rgb[2]), uint8_t(round_non_negative(alpha * 255.0f)));
+        for (int k = 0; k < 3; ++k)
+          o[x][k] = uint8_t(round_non_negative(float(encode(encode_table, ground[k])) * keep +
+                                               line8[k] * (1.0f - keep)));
+        o[x][3] = uint8_t(round_non_negative(alpha * 255.0f));
       }
     }
   });

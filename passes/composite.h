@@ -6,10 +6,11 @@
 //   reference pixels, so the same seed gives the same sheet at any resolution).
 // Ink composite pass: reads "edges"-like line coverage (CV_32FC1 in [0, 1]), the coverage or
 //   colour image (CV_32FC1 coverage, or CV_8UC4 BGRA sRGB with alpha = coverage, as the raster
-//   pass's "color") and "paper"; writes "ink", the final CV_8UC4 BGRA sRGB image. All blending
-//   is in linear light:
+//   pass's "color") and "paper"; writes "ink", the final CV_8UC4 BGRA sRGB image. The wash
+//   is blended in linear light, the lines over it in sRGB-encoded values (as SVG and PDF
+//   renderers composite strokes, so the raster ink and the vector files look alike):
 //     ground = paper * mix(1, shaded, fill * coverage)      (a wash multiplies, like pigment)
-//     out    = mix(ground, line colour, lines)
+//     out    = mix(srgb(ground), srgb(line colour), lines)
 //   With a plain coverage mask there is no shaded colour: the wash is the line colour (a flat
 //   silhouette fill). Opaque unless `transparent`.
 #pragma once

@@ -28,8 +28,9 @@ class CornerGraph {
     SYLVA_CHECK(c.x.rows == m_h && c.x.cols == std::max(0, m_w - 1) && c.y.cols == m_w &&
                     c.y.rows == std::max(0, m_h - 1),
                 "chain_cracks: crack images of mismatched sizes");
-    m_free_x = c.x != 0;
-    m_free_y = c.y != 0;
+    // A one-pixel-wide or -high image has no cracks one way (an empty image).
+    m_free_x = c.x.empty() ? cv::Mat() : cv::Mat(c.x != 0);
+    m_free_y = c.y.empty() ? cv::Mat() : cv::Mat(c.y != 0);
     m_marked_x = m_free_x.clone();
     m_marked_y = m_free_y.clone();
   }

@@ -59,9 +59,9 @@ struct InkLineParams {
   // ink.detail: the smallest feature drawn, px at the 1024 px reference (scales with the image
   // like edges.width). 0 = leaf-exact lines. Range [0, 64]; default 10.
   float detail = 10.0f;
-  LineClassParams silhouette{true, 2.4f, 1.0f, 0.0f, 1.0f};
-  LineClassParams interior{true, 1.6f, 1.0f, 0.0f, 1.0f};
-  LineClassParams wood{true, 1.6f, 1.0f, 0.0f, 1.0f};
+  LineClassParams silhouette{true, 2.0f, 1.0f, 0.0f, 1.0f};
+  LineClassParams interior{true, 1.3f, 1.0f, 0.0f, 1.0f};
+  LineClassParams wood{true, 1.3f, 1.0f, 0.0f, 1.0f};
   LineClassParams detail_lines{false, 0.8f, 0.6f, 0.0f, 1.0f};
   const LineClassParams& of(LineClass c) const;
 };

@@ -10,6 +10,7 @@ packages=(
   libosmesa6-dev libopencv-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
   libpng-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
+  librsvg2-bin poppler-utils libxml2-utils
 )
 missing=()
 for p in "${packages[@]}"; do

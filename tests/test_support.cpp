@@ -60,29 +60,9 @@ std::string temp_dir(const std::string& tag) {
   return p.string();
 }
 
-RunResult run_sylva(const std::string& args) {
-  // The CLI caches preprocessing results; tests keep theirs in their own temporary folder.
-  static const bool cache_set =
-      setenv("SYLVA_CACHE_DIR", (temp_root().root / "cache").c_str(), 1) == 0;
-  (void)cache_set;
-  std::string cmd = sylva_binary() + " " + args + " 2>&1";
+RunResult run_command(const std::string& command) {
   RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("popen failed");
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0)
-    r.output.append(buf.data(), n);
-  int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-RunResult validate_gltf(const std::string& path) {
-  const std::string cmd =
-      "node " + source_dir() + "/tests/tools/validate_gltf.mjs " + path + " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) throw std::runtime_error("popen failed");
   std::array<char, 4096> buf;
   size_t n;
@@ -91,6 +71,18 @@ RunResult validate_gltf(const std::string& path) {
   const int st = pclose(pipe);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+RunResult run_sylva(const std::string& args) {
+  // The CLI caches preprocessing results; tests keep theirs in their own temporary folder.
+  static const bool cache_set =
+      setenv("SYLVA_CACHE_DIR", (temp_root().root / "cache").c_str(), 1) == 0;
+  (void)cache_set;
+  return run_command(sylva_binary() + " " + args);
+}
+
+RunResult validate_gltf(const std::string& path) {
+  return run_command("node " + source_dir() + "/tests/tools/validate_gltf.mjs " + path);
 }
 
 bool gltf_validator_installed() {

@@ -19,6 +19,9 @@ struct RunResult {
   int status = -1;     // exit status
   std::string output;  // stdout + stderr
 };
+// Runs a shell command (stderr joined to stdout), e.g. a tool nobody here wrote that checks an
+// output: rsvg-convert, xmllint, pdftoppm.
+RunResult run_command(const std::string& command);
 // Runs `sylva <args>` through /bin/sh (args are passed verbatim), with SYLVA_CACHE_DIR set
 // to a folder of the test run, so tests never read or fill the user's cache.
 RunResult run_sylva(const std::string& args);

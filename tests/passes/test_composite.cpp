@@ -55,7 +55,8 @@ TEST(InkComposite, PurePenDrawingIsLinesOnWhite) {
   for (int y = 0; y < out.rows; ++y)
     for (int x = 0; x < out.cols; ++x) {
       const float l = in.lines.at<float>(y, x);
-      const uint8_t v = encode(1.0f - l);  // black over white in linear light
+      // Black over white blended in sRGB values, as SVG and PDF renderers do.
+      const uint8_t v = uint8_t(std::lround(255.0f * (1.0f - l)));
       ASSERT_EQ(out.at<cv::Vec4b>(y, x), cv::Vec4b(v, v, v, 255)) << y << "," << x;
     }
 }
