@@ -62,6 +62,7 @@ SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint6
   s.foliage_diagonal = frame.scene.bounds(Role::Foliage).diagonal();
   s.scene_sphere = frame.scene.framing_sphere();
   s.branch_cluster = frame.scene.branch_cluster_id();
+  s.has_foliage = !frame.scene.bounds(Role::Foliage).empty();
   const Scene* scene = &frame.scene;
   s.scene = scene;
   s.seed = seed;

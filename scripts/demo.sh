@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders the demo gallery: the sample tree, bush and conifer and the shared fern in the
-# standard, expressive (Luft et al.), ink, toon, watercolor and blobs (Dudley) styles, a contact sheet of
+# standard, expressive (Luft et al.), ink, pen, toon, watercolor and blobs (Dudley) styles, the
+# shared needle and weeping trees in ink and pen (PNG, SVG, PDF), a contact sheet of
 # every style per scene, their G-buffer previews, the normal buffers of Luft Fig. 7 (original,
 # realigned, realigned-scaled), a rho/tau sweep (Luft Fig. 3), toon with cast shadows, toon
 # and keyframed blob turntables (MP4), an ink turntable GIF, Hegeman AO on a ground plane and grass, a baked tree and the foliage trade-off plot. Usage: scripts/demo.sh SYLVA_BINARY OUT_DIR
@@ -16,7 +17,7 @@ scenes=("$out/tree.glb" "$out/bush.glb" "$out/conifer.glb" "$shared/assets/polyh
 for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .glb)
   "$sylva" render "$scene" --style standard --size 1024 --ssaa 2 -o "$out/$name-standard.png"
-  for style in expressive ink toon watercolor blobs; do
+  for style in expressive ink pen toon watercolor blobs; do
     "$sylva" render "$scene" --style "$style" --size 1024 --ssaa 2 --cache-dir "$out/cache" \
       -o "$out/$name-$style.png"
   done
@@ -27,6 +28,18 @@ for scene in "${scenes[@]}"; do
     "$sylva" buffers "$scene" --size 512 --buffers normal --normals "$normals" \
       --cache-dir "$out/cache" --out-dir "$out/$name-normals-$normals"
   done
+done
+# Needle and weeping trees in ink and pen (issue "Ink for illustrators"), and the pen drawing
+# as SVG and PDF (issue "Vector line art").
+for tree in sapling_small_pine_s2 sapling_weeping_willow_s2; do
+  for style in ink pen; do
+    "$sylva" render "$shared/assets/$tree.glb" --style "$style" --size 1024 \
+      --cache-dir "$out/cache" -o "$out/$tree-$style.png"
+  done
+  "$sylva" render "$shared/assets/$tree.glb" --style pen --size 1024 --cache-dir "$out/cache" \
+    -o "$out/$tree-pen.svg"
+  "$sylva" render "$shared/assets/$tree.glb" --style pen --size 1024 --dpi 300 \
+    --cache-dir "$out/cache" -o "$out/$tree-pen.pdf"
 done
 "$sylva" compare "$out/tree.glb" --style expressive --sweep foliage.rho=3%,8%,20% \
   --sweep foliage.tau=auto,4,16 --size 384 --ssaa 2 --cache-dir "$out/cache" -q \

@@ -151,7 +151,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     const Style& style = *styles[i];
     RasterSetup setup = scene.raster;
     style.configure(setup.request);
-    const NormalMode mode = style.normals();
+    const NormalMode mode = scene.has_foliage ? style.normals() : NormalMode::Original;
     setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
     // Declared for every style, so compile() is what culls the preprocessing of styles that
     // keep the model's normals (and the graph's .dot shows it culled).

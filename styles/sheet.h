@@ -53,6 +53,9 @@ struct SheetScene {
   float foliage_diagonal = 0;   // scene units (StyleContext::foliage_diagonal)
   Sphere scene_sphere;          // StyleContext::scene_sphere
   uint32_t branch_cluster = 0;  // StyleContext::branch_cluster
+  // Whether the scene has foliage: without, styles that ask for realigned normals draw the
+  // model's (there is no crown to realign them to) instead of failing.
+  bool has_foliage = true;
   std::shared_ptr<const BlobSet> blobs;  // StyleContext::blobs
   // The Luft preprocessing for one style's foliage settings (parsed against the scene).
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;

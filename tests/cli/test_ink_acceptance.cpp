@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <regex>
 
 #include "tests/cli/cli_support.h"
 #include "tests/cli/ink_metrics.h"
@@ -62,6 +64,45 @@ TEST_P(InkAcceptance, CoverageOutlineScaleAndTone) {
   EXPECT_GE(small_in_large, 0.85);
   EXPECT_GE(large_in_small, 0.85);
   EXPECT_GE(tone.dark, 2.0 * tone.bright);
+}
+
+// Issue "Vector line art": the ink SVG and PDF of each tree at 1024², rendered by rsvg-convert
+// and pdftoppm, draw the PNG's ink (90 % of either's ink pixels within 1.5 px of the other's);
+// strokes are chained (at least 20 ink pixels per path); the SVG is at most 4 MB.
+TEST_P(InkAcceptance, VectorFilesDrawThePngsInk) {
+  const std::string scene = tree_path(GetParam());
+  const std::string dir = temp_dir("vector-acceptance");
+  const std::string args = "render " + scene + " --style ink --size 1024 -o " + dir + "/ink";
+  for (const char* ext : {".png", ".svg", ".pdf"})
+    ASSERT_EQ(run_sylva(args + ext).status, 0) << ext;
+  const cv::Mat png = ink_pixels(cv::imread(dir + "/ink.png", cv::IMREAD_COLOR));
+  ASSERT_EQ(run_command("rsvg-convert -w 1024 -h 1024 -b white -o " + dir + "/svg.png " + dir +
+                        "/ink.svg")
+                .status,
+            0);
+  ASSERT_EQ(
+      run_command("pdftoppm -png -r 72 -singlefile " + dir + "/ink.pdf " + dir + "/pdf").status, 0);
+  const cv::Mat svg = ink_pixels(cv::imread(dir + "/svg.png", cv::IMREAD_COLOR));
+  const cv::Mat pdf = ink_pixels(cv::imread(dir + "/pdf.png", cv::IMREAD_COLOR));
+  const std::string text = read_file(dir + "/ink.svg");
+  const std::regex path("<path ");
+  const auto paths =
+      std::distance(std::sregex_iterator(text.begin(), text.end(), path), std::sregex_iterator());
+  const double per_path = double(cv::countNonZero(png)) / std::max<long>(1, paths);
+  const auto bytes = std::filesystem::file_size(dir + "/ink.svg");
+  const double svg_in_png = share_near(svg, png, 1.5), png_in_svg = share_near(png, svg, 1.5);
+  const double pdf_in_png = share_near(pdf, png, 1.5), png_in_pdf = share_near(png, pdf, 1.5);
+  std::printf(
+      "%s: SVG %.0f KB, %ld paths, %.0f ink px per path; PNG ink in SVG %.1f %%, SVG in PNG "
+      "%.1f %%, in PDF %.1f %%, PDF in PNG %.1f %%\n",
+      GetParam().c_str(), bytes / 1024.0, long(paths), per_path, 100 * png_in_svg, 100 * svg_in_png,
+      100 * png_in_pdf, 100 * pdf_in_png);
+  EXPECT_GE(png_in_svg, 0.9);
+  EXPECT_GE(svg_in_png, 0.9);
+  EXPECT_GE(png_in_pdf, 0.9);
+  EXPECT_GE(pdf_in_png, 0.9);
+  EXPECT_GE(per_path, 20.0);
+  EXPECT_LE(bytes, 4u << 20);
 }
 
 INSTANTIATE_TEST_SUITE_P(Trees, InkAcceptance,

@@ -4,7 +4,7 @@
 // scene; toon also with cast shadows (its shadow-map pass included). The Luft preprocessing is
 // scene-level and cached (npr/foliage_cache.h), so it is computed once outside the timed loop.
 // Reports medians (run with --benchmark_repetitions); the cost ratios to the bare raster pass are
-// worked out from them.
+// worked out from them. The line styles (raster, ink, pen) also on the shared weeping willow.
 //
 // The same for the ink style on a small alpha-card tree (`sylva sample tree --leaves 4200`,
 // 25,013 triangles, loaded back from a .glb as the command does): one frame (BM_CardTree), and
@@ -109,14 +109,15 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.rasterizer = r.raster.get();  // toon.cast_shadows renders the key light's shadow map
   context.scene_sphere = r.scene.framing_sphere();
   context.camera = setup.camera;
+  context.branch_cluster = r.scene.branch_cluster_id();
   const int out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
   graph.present(out);
   graph.execute();
   benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
 }
 
-const char* const kStyles[] = {"raster", "standard",   "expressive",  "ink",
-                               "toon",   "watercolor", "toon-shadows"};
+const char* const kStyles[] = {"raster", "standard", "expressive", "ink",
+                               "pen",    "toon",     "watercolor", "toon-shadows"};
 
 // "toon-shadows": toon with toon.cast_shadows (a shadow map from the key light each frame).
 Style make_style(const std::string& name) {
@@ -134,7 +135,29 @@ void BM_Style(benchmark::State& state) {
     render_frame(r, name, style);
 }
 BENCHMARK(BM_Style)
-    ->DenseRange(0, 6)
+    ->DenseRange(0, 7)
+    ->ArgName("style")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The shared weeping willow (218,072 triangles, 63,200 leaves): ink and pen against the raster.
+Rig& willow_rig() {
+  static Rig r(load_scene(std::string(SYLVA_SHARED_DIR) + "/assets/sapling_weeping_willow_s2.glb"));
+  return r;
+}
+
+const char* const kLineStyles[] = {"raster", "ink", "pen"};
+
+void BM_Willow(benchmark::State& state) {
+  Rig& r = willow_rig();
+  const std::string name = kLineStyles[state.range(0)];
+  state.SetLabel(name);
+  const Style style(name == "raster" ? "standard" : name);
+  for (auto _ : state)
+    render_frame(r, name, style);
+}
+BENCHMARK(BM_Willow)
+    ->DenseRange(0, 2)
     ->ArgName("style")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
