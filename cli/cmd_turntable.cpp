@@ -26,9 +26,9 @@ namespace sylva::cli {
 
 namespace {
 
-std::string frame_name(int frame) {
+std::string frame_name(int frame, const std::string& format = "png") {
   char name[32];
-  std::snprintf(name, sizeof name, "frame-%05d.png", frame);
+  std::snprintf(name, sizeof name, "frame-%05d.%s", frame, format.c_str());
   return name;
 }
 
@@ -64,7 +64,8 @@ Action add_turntable_command(CLI::App& app) {
     TurntablePath path;
     std::string axis = "y";
     double fps = 30;
-    std::string range, report, out, keyframe_cache;
+    std::string range, report, out, keyframe_cache, frame_format = "png";
+    double dpi = 0.0;
     int keyframe_every = 1;
     bool resume = false, quiet = false;
   };
@@ -104,11 +105,17 @@ Action add_turntable_command(CLI::App& app) {
   cmd->add_option("--report", o->report,
                   "Write per-frame time and flicker (mean |change| inside the plant, 8-bit "
                   "levels) to a .csv");
+  cmd->add_option("--frame-format", o->frame_format,
+                  "Folder output: png, or svg / pdf (the strokes of a line style: ink, pen) for "
+                  "plotters and motion work")
+      ->capture_default_str();
+  cmd->add_option("--dpi", o->dpi, "svg/pdf frames: pixels per inch of the page, [0, 10000]")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "No progress output");
   cmd->add_option(
          "-o,--output", o->out,
-         "Output .mp4, .gif, or a folder for PNG frames frame-00000.png, ... (a name without "
-         "extension)")
+         "Output .mp4, .gif, or a folder for frames frame-00000.png, ... (or .svg/.pdf with "
+         "--frame-format; a name without extension)")
       ->required();
   return [o, cmd] {
     o->path.axis = o->axis.size() == 1 ? o->axis[0] : '?';
@@ -138,6 +145,13 @@ Action add_turntable_command(CLI::App& app) {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
     (void)last_keyframe(o->path.frames, o->keyframe_every);  // validates --keyframe-every
     const bool blobs = style->info().builder == "blobs";
+    if (o->frame_format != "png" && o->frame_format != "svg" && o->frame_format != "pdf")
+      throw InputError("--frame-format", "must be png, svg or pdf, not '" + o->frame_format + "'");
+    const bool vector = o->frame_format != "png";
+    if (vector && !to_dir)
+      throw InputError("--frame-format", "svg and pdf frames need a folder output");
+    if (vector) require_line_style(*style, "--style");
+    check_dpi(o->dpi, "--dpi");
     if (!blobs && (o->keyframe_every != 1 || !o->keyframe_cache.empty()))
       throw InputError(o->keyframe_every != 1 ? "--keyframe-every" : "--keyframe-cache",
                        "keyframes are for the blobs style (style '" + style->info().name +
@@ -172,15 +186,17 @@ Action add_turntable_command(CLI::App& app) {
     po.quiet = o->quiet;
     Progress progress("turntable", static_cast<size_t>(range.end - range.begin), po);
     for (int i = range.begin; i < range.end; ++i) {
-      const std::string file = (fs::path(o->out) / frame_name(i)).string();
+      const std::string file = (fs::path(o->out) / frame_name(i, o->frame_format)).string();
       if (o->resume && fs::exists(file)) {
         ++skipped;
         progress.step("frame " + std::to_string(i) + " kept");
         continue;
       }
       const auto t0 = std::chrono::steady_clock::now();
-      TurntableFrame now = renderer.render(i, !o->report.empty());
-      if (to_dir) {
+      TurntableFrame now = renderer.render(i, !o->report.empty(), vector);
+      if (vector) {
+        write_vector_drawing(file, *now.strokes, vector_page(*style, o->view, o->dpi));
+      } else if (to_dir) {
         write_image(file, now.image);
       } else if (gif) {
         gif->write(now.image);

@@ -203,8 +203,8 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.blobs = scene.blobs;
     auto s = scope("cell-" + std::to_string(i));
     const StyleOutput out = style.build(graph, rasters[rkey], context);
-    graph.present(out.image);
-    if (present_strokes && out.strokes >= 0) graph.present(out.strokes);
+    // Vector output needs the strokes only: the raster ink and its composite are culled.
+    graph.present(present_strokes && out.strokes >= 0 ? out.strokes : out.image);
     plan.outputs.push_back(out.image);
     plan.strokes.push_back(present_strokes ? out.strokes : -1);
     plan.gbuffers.push_back(rasters[rkey]);

@@ -82,8 +82,8 @@ struct SheetPlan {
 // nothing is scoped (pass names as in a plain render); with several, style i's passes live
 // in scope "cell-i", raster configuration j in "raster-j", foliage settings k in
 // "foliage-k", AO settings m in "ao-m".
-// With present_strokes, the StrokeDrawing of every style made of lines is presented too (for
-// vector output).
+// With present_strokes, every style made of lines presents its StrokeDrawing instead of its
+// image (vector output: the raster ink is culled).
 SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
                            const SheetScene& scene, bool present_strokes = false);
 

@@ -46,18 +46,23 @@ int TurntableRenderer::keyframes_read() const {
   return m_keyframes ? m_keyframes->read() : 0;
 }
 
-TurntableFrame TurntableRenderer::render(int frame, bool coherence) {
+TurntableFrame TurntableRenderer::render(int frame, bool coherence, bool strokes) {
   m_scene.raster.camera = turntable_camera(m_base, m_scene.scene_sphere.centre, m_path, frame);
   if (m_keyframes) m_scene.blobs = std::make_shared<const BlobSet>(m_keyframes->frame(frame));
   RenderGraph graph;
-  const SheetPlan plan = add_sheet_passes(graph, {&m_style}, m_scene);
+  strokes = strokes && m_style.has_strokes();
+  const SheetPlan plan = add_sheet_passes(graph, {&m_style}, m_scene, strokes);
+  const bool image = !strokes || coherence;
+  if (image) graph.present(plan.outputs[0]);
   if (coherence) graph.present(plan.gbuffers[0].depth);  // the plant's mask
   const int outlines = m_blobs && coherence ? graph.find_resource("blob-outlines") : -1;
   if (outlines >= 0) graph.present(outlines);
   graph.compile();
   graph.execute();
   TurntableFrame out;
-  out.image = graph.get<cv::Mat>(plan.outputs[0]);  // shares the pixels; the graph goes
+  if (image) out.image = graph.get<cv::Mat>(plan.outputs[0]);  // shares the pixels
+  if (strokes)
+    out.strokes = std::make_shared<const StrokeDrawing>(graph.get<StrokeDrawing>(plan.strokes[0]));
   if (coherence) out.mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
   if (outlines >= 0) out.blobs = graph.get<BlobSet>(outlines);
   return out;

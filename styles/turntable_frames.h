@@ -23,7 +23,9 @@ void memoize_preprocessing(SheetScene& scene, bool quiet);
 
 // One rendered frame.
 struct TurntableFrame {
-  cv::Mat image;  // CV_8UC4 BGRA sRGB, the style's output
+  cv::Mat image;  // CV_8UC4 BGRA sRGB, the style's output (empty when only strokes were asked)
+  // With strokes (line styles): the frame's StrokeDrawing, for vector frames.
+  std::shared_ptr<const StrokeDrawing> strokes;
   // With coherence only: the plant's coverage (CV_8UC1, 255 where depth > 0), and the blob
   // outlines the frame painted (blobs styles).
   cv::Mat mask;
@@ -45,8 +47,9 @@ class TurntableRenderer {
   ~TurntableRenderer();
 
   // Frame `frame` (0-based); `coherence` also fills mask and blobs (presenting them from the
-  // graph, which keeps the depth target and the outlines alive).
-  TurntableFrame render(int frame, bool coherence);
+  // graph, which keeps the depth target and the outlines alive). `strokes` (a line style)
+  // gives the StrokeDrawing, and the image only with coherence.
+  TurntableFrame render(int frame, bool coherence, bool strokes = false);
 
   bool blobs() const { return m_blobs; }  // the style paints blobs
   bool keyframed() const { return m_keyframes != nullptr; }

@@ -159,6 +159,29 @@ TEST(LineStyles, ClosedOutlinesAreClosedPaths) {
   }
 }
 
+TEST(LineStyles, TurntableWritesOneSvgPerFrame) {
+  const std::string dir = temp_dir("turntable-svg");
+  const std::string args = "turntable " + small_tree() + " --style pen --frames 3 --size 160 -q";
+  ASSERT_EQ(run_sylva(args + " -o " + dir + "/png/").status, 0);
+  const RunResult r = run_sylva(args + " --frame-format svg -o " + dir + "/svg/");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int i = 0; i < 3; ++i) {
+    const std::string svg = dir + "/svg/frame-0000" + std::to_string(i) + ".svg";
+    EXPECT_EQ(run_command("xmllint --noout " + svg).status, 0) << svg;
+    const cv::Mat png =
+        ink_pixels(cv::imread(dir + "/png/frame-0000" + std::to_string(i) + ".png"));
+    const cv::Mat drawn = ink_pixels(rendered(svg, dir + "/r.png", 160));
+    EXPECT_GE(share_near(png, drawn, 1.5), 0.9) << i;
+    EXPECT_GE(share_near(drawn, png, 1.5), 0.9) << i;
+  }
+  expect_input_error("turntable " + small_tree() + " --style toon --frames 2 --size 64 " +
+                         "--frame-format svg -o " + dir + "/toon/",
+                     "no lines");
+  expect_input_error(args + " --frame-format svg -o " + dir + "/t.mp4", "folder");
+  expect_input_error(args + " --frame-format tiff -o " + dir + "/x/", "png, svg or pdf");
+  EXPECT_FALSE(fs::exists(dir + "/toon"));
+}
+
 TEST(LineStyles, BadVectorOutputsAreErrorsAndWriteNothing) {
   const std::string dir = temp_dir("vector-bad");
   const std::string scene = small_tree() + " --size 64 ";

@@ -20,6 +20,7 @@
 
 #include "core/gl/raster_pass.h"
 #include "core/io/image_io.h"
+#include "core/io/svg_writer.h"
 #include "core/scene/gltf_write.h"
 #include "core/scene/load.h"
 #include "npr/foliage_illumination.h"
@@ -65,6 +66,7 @@ struct CardFiles {
   fs::path glb = dir / "cards.glb";
   fs::path cache = dir / "cache";
   fs::path png = dir / "cards-ink.png";
+  fs::path svg = dir / "cards-ink.svg";
   CardFiles() {
     fs::create_directories(dir);
     write_glb(perf::sample_tree(kCardLeaves), glb.string());
@@ -180,7 +182,7 @@ BENCHMARK(BM_CardTree)
 
 // As cli/cmd_render.cpp: the scene loaded and clustered, a new GL context, the preprocessing
 // through the result cache (filled before the timed loop), the frame, the PNG.
-void render_card_command(const CardFiles& files, const Style& style) {
+void render_card_command(const CardFiles& files, const Style& style, bool svg = false) {
   Scene scene = load_scene(files.glb.string());
   assign_clusters(scene, ClusterOptions{});
   const std::unique_ptr<GlContext> context = create_gl_context();
@@ -203,21 +205,33 @@ void render_card_command(const CardFiles& files, const Style& style) {
   context_info.view = setup.camera.view;
   context_info.background = setup.request.background;
   context_info.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
-  const int out = style.build(graph, gb, context_info).image;
-  graph.present(out);
+  context_info.camera = setup.camera;
+  context_info.scene_sphere = scene.framing_sphere();
+  context_info.branch_cluster = scene.branch_cluster_id();
+  const StyleOutput out = style.build(graph, gb, context_info);
+  graph.present(svg ? out.strokes : out.image);
   graph.execute();
-  write_image(files.png.string(), graph.get<cv::Mat>(out));
+  if (svg)
+    write_svg(files.svg.string(), graph.get<StrokeDrawing>(out.strokes), VectorPage{});
+  else
+    write_image(files.png.string(), graph.get<cv::Mat>(out.image));
 }
 
+// Arg 0: `-o cards.png`; 1: `-o cards.svg` (issue "Vector line art": at most 1.3x the PNG).
 void BM_CardTreeCommand(benchmark::State& state) {
   const CardFiles& files = card_files();
   const Style style("ink");
-  state.SetLabel("ink");
-  render_card_command(files, style);  // fills the result cache, as a first run would
+  const bool svg = state.range(0) == 1;
+  state.SetLabel(svg ? "ink svg" : "ink png");
+  render_card_command(files, style, svg);  // fills the result cache, as a first run would
   for (auto _ : state)
-    render_card_command(files, style);
+    render_card_command(files, style, svg);
 }
-BENCHMARK(BM_CardTreeCommand)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CardTreeCommand)
+    ->DenseRange(0, 1)
+    ->ArgName("svg")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace sylva
