@@ -64,7 +64,7 @@ void print_written(const TradeoffOutputs& out, size_t rows) {
 namespace {
 
 // The studies `--study` accepts.
-const char* const kStudies = "foliage, ao, keyframes";
+const char* const kStudies = "foliage, ao, keyframes, coherence";
 
 // An option of one study given to another: one clear line instead of silently ignoring it.
 void reject_options(const std::vector<CLI::Option*>& options, const std::string& study) {
@@ -143,6 +143,7 @@ Action add_tradeoff_command(CLI::App& app) {
     bool quiet = false;
     AoStudyCliOptions ao;
     KeyframeStudyCliOptions keyframes;
+    CoherenceStudyCliOptions coherence;
     std::vector<CLI::Option*> foliage_only;
   };
   auto o = std::make_shared<Opts>();
@@ -184,15 +185,31 @@ Action add_tradeoff_command(CLI::App& app) {
   o->foliage_only.assign(all.begin() + long(before), all.end());
   add_ao_study_options(*cmd, o->ao);
   add_keyframe_study_options(*cmd, o->keyframes);
+  add_coherence_study_options(*cmd, o->coherence);
   // The settings the sweep starts from: a style's foliage.* keys (after --set), then the
   // explicit options above.
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
   return [o, cmd] {
-    if (o->study != "foliage" && o->study != "ao" && o->study != "keyframes")
+    if (o->study != "foliage" && o->study != "ao" && o->study != "keyframes" &&
+        o->study != "coherence")
       throw InputError("--study", "unknown study '" + o->study + "' (allowed: " + kStudies + ")");
     check_output_path("--output", o->out, {".csv"});
     if (!o->plot.empty()) check_output_path("--plot", o->plot, {".png"});
+    if (o->study != "coherence") reject_options(o->coherence.options, o->study);
+    if (o->study == "coherence") {
+      reject_options(o->foliage_only, o->study);
+      for (CLI::Option* opt : o->ao.options)
+        if (std::find(o->ao.view_options.begin(), o->ao.view_options.end(), opt) ==
+            o->ao.view_options.end())
+          reject_options({opt}, o->study);
+      for (const char* name : {"--every", "--degrees", "--style"})
+        reject_options({cmd->get_option(name)}, o->study + " (use --styles and --step)");
+      run_coherence_study_command(o->scene, o->coherence, o->keyframes,
+                                  cmd->get_option("--frames")->count() > 0, o->ao.view,
+                                  o->illumination, o->sets, {o->out, o->plot, o->quiet});
+      return;
+    }
     if (o->study == "keyframes") {
       reject_options(o->foliage_only, o->study);
       for (CLI::Option* opt : o->ao.options)

@@ -179,7 +179,7 @@ Action add_turntable_command(CLI::App& app) {
         blobs ? keyframe_signature(*frame, *style, o->path, o->keyframe_every) : "");
 
     std::ostringstream csv;
-    csv << "frame,seconds,flicker" << (blobs ? ",jitter" : "") << "\n";
+    csv << "frame,seconds,flicker,reprojection_error,line_pop" << (blobs ? ",jitter" : "") << "\n";
     TurntableFrame previous;
     int written = 0, skipped = 0;
     ProgressOptions po;
@@ -209,8 +209,14 @@ Action add_turntable_command(CLI::App& app) {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!o->report.empty()) {
         csv << i << ',' << seconds << ',';
-        if (!previous.image.empty())
-          csv << frame_flicker(previous.image, now.image, previous.mask, now.mask);
+        if (!previous.image.empty()) {
+          const FrameCoherence c = frame_coherence(previous.view, now.view);
+          csv << frame_flicker(previous.image, now.image, previous.mask, now.mask) << ','
+              << c.reprojection_error << ',';
+          if (c.line_pop) csv << *c.line_pop;
+        } else {
+          csv << ",,";
+        }
         if (now.blobs) {
           csv << ',';
           if (!previous.image.empty() && previous.blobs)

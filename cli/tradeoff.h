@@ -96,4 +96,23 @@ void run_keyframe_study_command(const SceneOptions& scene, const KeyframeStudyCl
                                 ViewOptions& view, IlluminationOptions& illumination,
                                 const Style& style, const TradeoffOutputs& out);
 
+// The options only `--study coherence` reads (besides the view options, and --frames, --axis
+// and --zoom of the keyframes study's).
+struct CoherenceStudyCliOptions {
+  std::string styles;  // empty = every built-in style
+  float step = 1.0f;
+  std::vector<CLI::Option*> options;  // every option above, to reject them in other studies
+};
+
+// Registers --styles and --step.
+void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o);
+
+// `sylva tradeoff SCENE --study coherence`: every style of --styles on --frames views --step
+// degrees apart (styles/coherence_study.h), CSV (and plot) written atomically, table printed.
+// `frames` is the keyframes study's --frames when given, else 12.
+void run_coherence_study_command(const SceneOptions& scene, const CoherenceStudyCliOptions& o,
+                                 const KeyframeStudyCliOptions& path, bool frames_given,
+                                 ViewOptions& view, IlluminationOptions& illumination,
+                                 const std::vector<std::string>& sets, const TradeoffOutputs& out);
+
 }  // namespace sylva::cli

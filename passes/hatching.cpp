@@ -79,11 +79,13 @@ bool covered(const cv::Mat& color, int x, int y) {
   return color.at<cv::Vec4b>(y, x)[3] >= 128;
 }
 
-// A scene-fixed anchor: the visible surface point nearest its cube's seeded point.
+// A scene-fixed anchor: a cube's seeded point, where the visible surface passes near it; its
+// place on screen is the point's projection, so it moves exactly with the scene.
 struct Anchor {
   uint64_t key;
   double rank;
-  int x, y;
+  float cx, cy;  // continuous image coordinates of the projected point
+  int x, y;      // the pixel it falls in
 };
 
 uint64_t cube_key(const glm::vec3& p, double cube) {
@@ -102,64 +104,56 @@ glm::vec3 cube_point(uint64_t key, double cube, uint64_t seed) {
           float((double(c(42)) + hash01(key, seed * 4 + 3)) * cube)};
 }
 
-std::vector<Anchor> scene_anchors(const ToneImages& in, const glm::mat4& to_world, double cube,
+// The cubes the visible surface passes through (each visible pixel's world point names one),
+// kept where the cube's seeded point projects onto a visible pixel whose surface lies within
+// two cubes of the point's depth: the surface near the point is in sight.
+std::vector<Anchor> scene_anchors(const ToneImages& in, const ToneView& view, double cube,
                                   uint64_t seed) {
-  struct Hit {
-    uint64_t key;
-    float d2;
-    int index;
-  };
-  std::vector<Hit> hits;
-  const int w = in.color.cols;
+  const glm::mat4 to_world = glm::inverse(view.view);
+  std::vector<uint64_t> keys;
   for (int y = 0; y < in.color.rows; ++y)
-    for (int x = 0; x < w; ++x) {
+    for (int x = 0; x < in.color.cols; ++x) {
       if (!covered(in.color, x, y)) continue;
       const cv::Vec3f v = in.position.at<cv::Vec3f>(y, x);
-      const glm::vec3 p = glm::vec3(to_world * glm::vec4(v[0], v[1], v[2], 1.0f));
-      const uint64_t key = cube_key(p, cube);
-      const glm::vec3 d = p - cube_point(key, cube, seed);
-      hits.push_back({key, glm::dot(d, d), y * w + x});
+      keys.push_back(cube_key(glm::vec3(to_world * glm::vec4(v[0], v[1], v[2], 1.0f)), cube));
     }
-  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
-    return a.key != b.key ? a.key < b.key : (a.d2 != b.d2 ? a.d2 < b.d2 : a.index < b.index);
-  });
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<Anchor> anchors;
-  for (size_t i = 0; i < hits.size(); ++i)
-    if (i == 0 || hits[i].key != hits[i - 1].key)
-      anchors.push_back(
-          {hits[i].key, hash01(hits[i].key, seed * 4), hits[i].index % w, hits[i].index / w});
-  std::sort(anchors.begin(), anchors.end(), [](const Anchor& a, const Anchor& b) {
-    return a.rank != b.rank ? a.rank < b.rank : a.key < b.key;
-  });
-  return anchors;
+  const float w = float(in.color.cols), h = float(in.color.rows);
+  for (uint64_t key : keys) {
+    const glm::vec4 q = view.view * glm::vec4(cube_point(key, cube, seed), 1.0f);
+    const glm::vec4 clip = view.proj * q;
+    if (clip.w <= 0.0f) continue;
+    const float cx = (clip.x / clip.w * 0.5f + 0.5f) * w, cy = (0.5f - clip.y / clip.w * 0.5f) * h;
+    const int x = int(std::floor(cx)), y = int(std::floor(cy));
+    if (x < 0 || y < 0 || x >= in.color.cols || y >= in.color.rows || !covered(in.color, x, y))
+      continue;
+    const float surface = in.position.at<cv::Vec3f>(y, x)[2];
+    if (std::abs(surface - q.z) > 2.0 * cube) continue;
+    anchors.push_back({key, hash01(key, seed * 4), cx, cy, x, y});
+  }
+  return anchors;  // in key order
 }
 
-// Accepted stroke centres in a grid of `cell` px, for the "no stroke within r" test.
-class SpacingGrid {
- public:
-  SpacingGrid(cv::Size size, double cell)
-      : m_cell(cell),
-        m_cols(int(std::ceil(size.width / cell)) + 1),
-        m_rows(int(std::ceil(size.height / cell)) + 1),
-        m_points(size_t(m_cols) * size_t(m_rows)) {}
-  bool free(cv::Point2f p, double r) const {
-    const int reach = int(std::ceil(r / m_cell));
-    const int cx = int(p.x / m_cell), cy = int(p.y / m_cell);
-    for (int y = std::max(0, cy - reach); y <= std::min(m_rows - 1, cy + reach); ++y)
-      for (int x = std::max(0, cx - reach); x <= std::min(m_cols - 1, cx + reach); ++x)
-        for (const cv::Point2f& q : m_points[size_t(y) * size_t(m_cols) + size_t(x)])
-          if (cv::norm(p - q) < r) return false;
-    return true;
-  }
-  void add(cv::Point2f p) {
-    m_points[size_t(int(p.y / m_cell)) * size_t(m_cols) + size_t(int(p.x / m_cell))].push_back(p);
-  }
-
- private:
-  double m_cell;
-  int m_cols, m_rows;
-  std::vector<std::vector<cv::Point2f>> m_points;
-};
+// How many anchors fall in the spacing-sized screen cells within 4 cells of each anchor, over
+// 81: the candidates per cell (averaged widely, so it changes little from frame to frame), so each
+// is drawn with the probability that gives one stroke per cell at full tone, whatever the depth
+// complexity.
+std::vector<double> candidates_per_cell(const std::vector<Anchor>& anchors, cv::Size size,
+                                        double cell) {
+  const int cols = int(std::ceil(size.width / cell)) + 1,
+            rows = int(std::ceil(size.height / cell)) + 1;
+  cv::Mat count(rows, cols, CV_32FC1, cv::Scalar(0));
+  for (const Anchor& a : anchors)
+    count.at<float>(int(a.cy / cell), int(a.cx / cell)) += 1.0f;
+  cv::blur(count, count, {9, 9}, {-1, -1}, cv::BORDER_CONSTANT);
+  std::vector<double> out;
+  out.reserve(anchors.size());
+  for (const Anchor& a : anchors)
+    out.push_back(std::max(1.0f, count.at<float>(int(a.cy / cell), int(a.cx / cell))));
+  return out;
+}
 
 // A straight stroke through `centre` along `dir`, `length` long, cut where it leaves `inside`.
 bool clipped_line(const cv::Mat& inside, cv::Point2f centre, cv::Point2f dir, double length,
@@ -238,8 +232,7 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   const double spacing = p.spacing * scale * grow, length = p.length * scale * grow;
   const uint64_t seed = uint64_t(p.seed);
   // Cubes of half the spacing: enough candidates for the densest tone.
-  std::vector<Anchor> anchors =
-      scene_anchors(in, glm::inverse(view.view), 0.5 * spacing * view.units_per_px, seed);
+  std::vector<Anchor> anchors = scene_anchors(in, view, 0.5 * spacing * view.units_per_px, seed);
   auto tone_at = [&](const Anchor& a) {
     const double darkness = dark.at<float>(a.y, a.x);
     return std::pow(std::clamp((darkness - lo) / (hi - lo), 0.0, 1.0), double(p.gamma));
@@ -248,25 +241,19 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   s.cls = LineClass::Tone;
   s.opacity = p.opacity;
   s.width = float(width);
-  // Layer 0 everywhere with tone; layer 1, crossing it, where the tone passes pen.cross: its
-  // own seeded order, so the crossing strokes do not sit on the first layer's (no "x" marks).
-  for (int layer = 0; layer < (p.tone == "hatching" ? 2 : 1); ++layer) {
-    if (layer == 1) {
-      if (p.cross >= 1.0f) break;
-      for (Anchor& a : anchors)
-        a.rank = hash01(a.key, seed * 4 + 7);
-      std::sort(anchors.begin(), anchors.end(), [](const Anchor& x, const Anchor& y) {
-        return x.rank != y.rank ? x.rank < y.rank : x.key < y.key;
-      });
-    }
-    SpacingGrid placed(size, spacing);
-    for (const Anchor& a : anchors) {
+  // Each anchor decides alone, by its seeded rank against the tone's share of the candidates
+  // around it, so one stroke coming or going never moves another (no cascade from frame to
+  // frame). Layer 0 everywhere with tone; layer 1, crossing it, where the tone passes
+  // pen.cross, with its own ranks, so the crossing strokes do not sit on the first layer's.
+  const std::vector<double> per_cell = candidates_per_cell(anchors, size, spacing);
+  for (int layer = 0; layer < (p.tone == "hatching" && p.cross < 1.0f ? 2 : 1); ++layer)
+    for (size_t i = 0; i < anchors.size(); ++i) {
+      const Anchor& a = anchors[i];
       double t = tone_at(a);
       if (layer == 1) t = (t - p.cross) / (1.0 - p.cross);
-      if (t <= 0.02) continue;
-      const cv::Point2f centre(a.x + 0.5f, a.y + 0.5f);
-      if (!placed.free(centre, spacing / std::sqrt(t))) continue;
-      placed.add(centre);
+      const double rank = layer == 0 ? a.rank : hash01(a.key, seed * 4 + 7);
+      if (t <= 0.02 || rank >= t / per_cell[i]) continue;
+      const cv::Point2f centre(a.cx, a.cy);
       if (p.tone == "stipple") {
         s.points = {{centre.x, centre.y}};
         d.strokes.push_back(s);
@@ -280,7 +267,6 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
       const cv::Point2f dir(float(std::cos(phi)), float(-std::sin(phi)));  // y points down
       if (clipped_line(inside, centre, dir, len, s)) d.strokes.push_back(s);
     }
-  }
   return d;
 }
 

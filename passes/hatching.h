@@ -10,14 +10,18 @@
 // (a dark conifer and a light aspen alike), its own shadows dense and its lit parts bare.
 // Anchors are fixed to the scene, not the screen, so a turntable does not shower-door: space
 // is cut into cubes of pen.spacing / 2 px (at the plant's distance), each with a seeded point
-// and a seeded rank; a cube's anchor is its visible surface point nearest that point. In rank
-// order, an anchor gets a stroke when its tone t > 0.02 and no stroke already placed lies
-// within pen.spacing / sqrt(t) px (so density grows with t, whatever the depth complexity),
-// two crossing strokes when t >= pen.cross. A hatching stroke is a straight line of about
-// pen.length px through the anchor at the crown region's angle (pen.angle plus a seeded offset
-// of up to pen.angle_jitter per leaf cluster), clipped to the plant's shape at ink.detail; a
-// stipple is a dot of pen.width. Strokes are at least 1 px wide and, in small renders, spaced
-// at least 4 widths apart (spacing and length grow together), so the tone never fills in.
+// and two seeded ranks; a cube the visible surface passes through, whose point projects onto a
+// visible pixel within two cubes of that surface's depth, anchors a stroke at the point's
+// projection, which moves exactly with the scene. Each anchor decides alone (no stroke's
+// coming or going moves another): it gets a stroke when its rank is below t / c, c being the
+// anchors per pen.spacing-sized cell around it (averaged over 9 x 9 cells), so the density is
+// t strokes per cell whatever the depth complexity; a second layer crossing at 90 degrees,
+// with the other rank, where the tone passes pen.cross. A hatching stroke is a straight line of
+// about pen.length px through the anchor at the crown region's angle (pen.angle plus a seeded
+// offset of up to pen.angle_jitter per leaf cluster), clipped to the plant's shape at
+// ink.detail; a stipple is a dot of pen.width. Strokes are at least 1 px wide and, in small
+// renders, spaced at least 4 widths apart (spacing and length grow together), so the tone
+// never fills in.
 //
 // Reads (render graph): "position" (CV_32FC3 view space), "id" (CV_32SC1 cluster ids) and
 // "color" (CV_8UC4 sRGB, alpha = coverage). Writes "tone-strokes", a StrokeDrawing of
@@ -81,10 +85,11 @@ struct ToneImages {
   cv::Mat color;     // CV_8UC4, alpha = coverage
 };
 
-// The frame's view: world -> view, and the scene units per px at the plant's distance (the
-// anchor cubes' scale; constant along a turntable).
+// The frame's view: world -> view, the projection, and the scene units per px at the plant's
+// distance (the anchor cubes' scale; constant along a turntable).
 struct ToneView {
   glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};  // view -> clip (the camera's projection)
   double units_per_px = 0.0;
 };
 

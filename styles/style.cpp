@@ -85,6 +85,7 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
     t.color = gbuffer.color;
     ToneView view;
     view.view = context.view;
+    view.proj = context.camera.proj;
     view.units_per_px = units_per_px(context.camera, context.scene_sphere);
     const int tone = add_tone_pass(graph, t, view, params.pen, params.lines.detail);
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines

@@ -54,16 +54,27 @@ TurntableFrame TurntableRenderer::render(int frame, bool coherence, bool strokes
   const SheetPlan plan = add_sheet_passes(graph, {&m_style}, m_scene, strokes);
   const bool image = !strokes || coherence;
   if (image) graph.present(plan.outputs[0]);
-  if (coherence) graph.present(plan.gbuffers[0].depth);  // the plant's mask
+  if (coherence) {
+    graph.present(plan.gbuffers[0].depth);  // the plant's mask
+    graph.present(plan.gbuffers[0].position);
+  }
   const int outlines = m_blobs && coherence ? graph.find_resource("blob-outlines") : -1;
   if (outlines >= 0) graph.present(outlines);
+  const int lines = coherence && m_style.has_strokes() ? graph.find_resource("lines") : -1;
+  if (lines >= 0) graph.present(lines);
   graph.compile();
   graph.execute();
   TurntableFrame out;
   if (image) out.image = graph.get<cv::Mat>(plan.outputs[0]);  // shares the pixels
   if (strokes)
     out.strokes = std::make_shared<const StrokeDrawing>(graph.get<StrokeDrawing>(plan.strokes[0]));
-  if (coherence) out.mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
+  if (coherence) {
+    out.mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
+    out.view.image = out.image;
+    out.view.position = graph.get<cv::Mat>(plan.gbuffers[0].position);
+    out.view.camera = m_scene.raster.camera;
+    if (lines >= 0) out.view.lines = graph.get<cv::Mat>(lines) >= 0.5f;
+  }
   if (outlines >= 0) out.blobs = graph.get<BlobSet>(outlines);
   return out;
 }

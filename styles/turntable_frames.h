@@ -10,6 +10,7 @@
 #include <string>
 
 #include "npr/blob_keyframes.h"
+#include "styles/reprojection.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
 #include "styles/turntable.h"
@@ -27,9 +28,12 @@ struct TurntableFrame {
   // With strokes (line styles): the frame's StrokeDrawing, for vector frames.
   std::shared_ptr<const StrokeDrawing> strokes;
   // With coherence only: the plant's coverage (CV_8UC1, 255 where depth > 0), and the blob
-  // outlines the frame painted (blobs styles).
+  // outlines the frame painted (blobs styles); the frame for reprojection (styles/
+  // reprojection.h): the image, view-space positions, line pixels (line styles: the raster
+  // ink's coverage >= 0.5) and the camera.
   cv::Mat mask;
   std::optional<BlobSet> blobs;
+  CoherenceFrame view;
 };
 
 class TurntableRenderer {

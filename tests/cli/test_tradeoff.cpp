@@ -291,6 +291,45 @@ TEST(Tradeoff, KeyframeStudyOnTheSampleTree) {
   EXPECT_NE(r.output.find("(reference)"), std::string::npos) << r.output;
 }
 
+// The coherence study: every style named, a row each with the motion taken out; the line
+// styles have a line pop, the others none; the reprojection error is under the plain flicker.
+TEST(Tradeoff, CoherenceStudyOnTheSampleTree) {
+  const std::string dir = temp_dir("tradeoff-coherence");
+  const RunResult r =
+      run_sylva("tradeoff " + small_tree() +
+                " --study coherence --styles standard,ink,pen --size 96 --frames 4 " +
+                "--step 2 -o " + dir + "/c.csv --plot " + dir + "/c.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string csv = read_file(dir + "/c.csv");
+  ASSERT_EQ(csv.rfind("style,frames,step_deg,width,height,seconds_per_frame,"
+                      "reprojection_error_mean,reprojection_error_max,line_pop_mean,line_pop_max,"
+                      "flicker_mean\n",
+                      0),
+            0u)
+      << csv;
+  EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
+  const auto rows = parse_csv(csv);
+  ASSERT_EQ(rows.size(), 3u) << csv;
+  EXPECT_EQ(rows[0].at("style"), "standard");
+  EXPECT_EQ(rows[0].at("line_pop_mean"), "");
+  for (size_t i = 1; i < 3; ++i) {
+    EXPECT_GE(number(rows[i], "line_pop_mean"), 0.0);
+    EXPECT_LE(number(rows[i], "line_pop_max"), 1.0);
+    EXPECT_GE(number(rows[i], "line_pop_max"), number(rows[i], "line_pop_mean"));
+  }
+  for (const auto& row : rows) {
+    EXPECT_EQ(number(row, "frames"), 4);
+    EXPECT_EQ(number(row, "step_deg"), 2);
+    EXPECT_GT(number(row, "seconds_per_frame"), 0);
+    EXPECT_LT(number(row, "reprojection_error_mean"), number(row, "flicker_mean"));
+    EXPECT_GE(number(row, "reprojection_error_max"), number(row, "reprojection_error_mean"));
+  }
+  const cv::Mat plot = cv::imread(dir + "/c.png", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(plot.empty());
+  EXPECT_EQ(plot.cols, 1200);
+  EXPECT_NE(r.output.find("coherence study 12/12  100%"), std::string::npos) << r.output;
+}
+
 TEST(Tradeoff, BadInputWritesNothing) {
   const std::string dir = temp_dir("tradeoff-bad");
   const std::string out = " -o " + dir + "/s.csv --plot " + dir + "/s.png";
@@ -299,7 +338,14 @@ TEST(Tradeoff, BadInputWritesNothing) {
     std::string args, needle;
   };
   for (const Case& c : std::vector<Case>{
-           {base + " --study leaves", "allowed: foliage, ao, keyframes"},
+           {base + " --study leaves", "allowed: foliage, ao, keyframes, coherence"},
+           {base + " --study coherence --step 0", "--step"},
+           {base + " --study coherence --frames 1", "--frames"},
+           {base + " --study coherence --styles ink,,toon", "--styles"},
+           {base + " --study coherence --styles nope", "nope"},
+           {base + " --study coherence --every 2", "does not apply to --study coherence"},
+           {base + " --study coherence --style ink", "--styles"},
+           {base + " --study keyframes --step 2", "does not apply to --study keyframes"},
            {base + " --study keyframes --every 0", "--every"},
            {base + " --study keyframes --every 1,,4", "--every"},
            {base + " --study keyframes --every 2,2", "twice"},

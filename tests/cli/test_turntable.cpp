@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
 #include "tests/cli/cli_support.h"
 #include "tests/test_support.h"
@@ -50,7 +51,7 @@ TEST(Turntable, SlicesAndResumeEqualTheFullRun) {
   // The report: a header and one row per frame; the first has no predecessor.
   const std::string csv = read_file(dir + "/c.csv");
   EXPECT_EQ(count_lines(csv), 7) << csv;
-  EXPECT_EQ(csv.rfind("frame,seconds,flicker\n0,", 0), 0u) << csv;
+  EXPECT_EQ(csv.rfind("frame,seconds,flicker,reprojection_error,line_pop\n0,", 0), 0u) << csv;
   EXPECT_EQ(csv.find("nan"), std::string::npos);
 }
 
@@ -93,7 +94,8 @@ TEST(Turntable, BlobKeyframesSliceAndCache) {
   ASSERT_EQ(each2.status, 0) << each2.output;
   EXPECT_NE(read_file(dir + "/each2/frame-00002.png"), read_file(dir + "/full/frame-00002.png"));
   const std::string csv = read_file(dir + "/c.csv");
-  EXPECT_EQ(csv.rfind("frame,seconds,flicker,jitter\n0,", 0), 0u) << csv;
+  EXPECT_EQ(csv.rfind("frame,seconds,flicker,reprojection_error,line_pop,jitter\n0,", 0), 0u)
+      << csv;
   EXPECT_EQ(count_lines(csv), 10) << csv;
   EXPECT_EQ(csv.find("nan"), std::string::npos);
   expect_input_error(args + "--keyframe-every 0 -o " + dir + "/x/", "--keyframe-every");
@@ -101,6 +103,44 @@ TEST(Turntable, BlobKeyframesSliceAndCache) {
       "turntable " + small_tree() + " --style toon --frames 4 --keyframe-every 2 -o " + dir + "/y/",
       "--keyframe-every");
   EXPECT_FALSE(fs::exists(dir + "/x"));
+}
+
+// The report's coherence with the motion taken out (styles/reprojection.h): a camera that does
+// not move gives exactly 0; a turning one a reprojection error well under the plain flicker.
+TEST(Turntable, ReportsReprojectionErrorAndLinePop) {
+  const std::string dir = temp_dir("turntable-coherence");
+  const std::string args = "turntable " + small_tree() + " --style ink --size 128 -q ";
+  ASSERT_EQ(run_sylva(args + "--frames 3 --degrees 0 --report " + dir + "/still.csv -o " + dir +
+                      "/still/")
+                .status,
+            0);
+  const std::string still = read_file(dir + "/still.csv");
+  EXPECT_NE(still.find("\n1,"), std::string::npos);
+  for (const std::string row : {"1,", "2,"}) {
+    const size_t at = still.find("\n" + row);
+    ASSERT_NE(at, std::string::npos) << still;
+    const std::string line = still.substr(at + 1, still.find('\n', at + 1) - at - 1);
+    EXPECT_TRUE(line.ends_with(",0,0,0")) << line;  // flicker, reprojection, pop
+  }
+  ASSERT_EQ(run_sylva(args + "--frames 90 --frame-range 0:3 --report " + dir + "/turn.csv -o " +
+                      dir + "/turn/")
+                .status,
+            0);
+  std::istringstream rows(read_file(dir + "/turn.csv"));
+  std::string line;
+  std::getline(rows, line);
+  std::getline(rows, line);  // frame 0
+  while (std::getline(rows, line)) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');)
+      v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 5u) << line;
+    EXPECT_GT(v[2], 0.0);   // flicker
+    EXPECT_LT(v[3], v[2]);  // the motion taken out
+    EXPECT_GE(v[4], 0.0);   // line pop
+    EXPECT_LE(v[4], 1.0);
+  }
 }
 
 TEST(Turntable, WritesAnMp4) {

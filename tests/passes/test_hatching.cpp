@@ -7,8 +7,10 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include "core/error.h"
 #include "core/stroke_render.h"
+
 #include "passes/hatching.h"
 
 namespace sylva::test {
@@ -43,6 +45,8 @@ ToneView view(int shift = 0) {
   v.view = glm::mat4(1.0f);
   v.view[3][0] = float(shift * kUnitsPerPx);
   v.units_per_px = kUnitsPerPx;
+  const float half = float(kSize / 2 * kUnitsPerPx);
+  v.proj = glm::ortho(-half, half, -half, half, 1.0f, 10.0f);  // the plane's pixels, as drawn
   return v;
 }
 
