@@ -43,8 +43,8 @@ namespace sylva {
 struct PenParams {
   // pen.tone: none | hatching | stipple. Default none (the `pen` preset: hatching).
   std::string tone = "none";
-  // pen.spacing: px at 1024 px between neighbouring strokes at full darkness. [2, 64]; 6.
-  float spacing = 6.0f;
+  // pen.spacing: px at 1024 px between neighbouring strokes at full darkness. [2, 64]; 7.
+  float spacing = 7.0f;
   // pen.length: px at 1024 px of a hatching stroke. [1, 128]; 16.
   float length = 16.0f;
   // pen.width: px at 1024 px of a hatching stroke, or a stipple dot's diameter (no thinner
