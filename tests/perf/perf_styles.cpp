@@ -10,7 +10,8 @@
 // 25,013 triangles, loaded back from a .glb as the command does): one frame (BM_CardTree), and
 // everything `sylva render cards.glb --style ink --size 1024x1024` does in-process with a
 // warm result cache (BM_CardTreeCommand: load, clusters, GL context, upload, cached
-// preprocessing, raster, ink, PNG written), which leaves out only the process start.
+// preprocessing, raster, ink, PNG or SVG written), which leaves out only the process start; the
+// command also on the shared willow (BM_WillowCommand).
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -180,10 +181,11 @@ BENCHMARK(BM_CardTree)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// As cli/cmd_render.cpp: the scene loaded and clustered, a new GL context, the preprocessing
-// through the result cache (filled before the timed loop), the frame, the PNG.
-void render_card_command(const CardFiles& files, const Style& style, bool svg = false) {
-  Scene scene = load_scene(files.glb.string());
+// As cli/cmd_render.cpp: the scene at `glb` loaded and clustered, a new GL context, the
+// preprocessing through the result cache (filled before the timed loop), the frame, the PNG or
+// SVG (into the scratch folder).
+void render_command(const fs::path& glb, const CardFiles& files, const Style& style, bool svg) {
+  Scene scene = load_scene(glb.string());
   assign_clusters(scene, ClusterOptions{});
   const std::unique_ptr<GlContext> context = create_gl_context();
   Rasterizer raster(*context);
@@ -217,17 +219,30 @@ void render_card_command(const CardFiles& files, const Style& style, bool svg = 
     write_image(files.png.string(), graph.get<cv::Mat>(out.image));
 }
 
-// Arg 0: `-o cards.png`; 1: `-o cards.svg` (issue "Vector line art": at most 1.3x the PNG).
-void BM_CardTreeCommand(benchmark::State& state) {
+// `sylva render GLB --style ink`: arg 0 `-o x.png`, 1 `-o x.svg` (issue "Vector line art": the
+// SVG at most 1.3x the PNG).
+void run_command(benchmark::State& state, const fs::path& glb) {
   const CardFiles& files = card_files();
   const Style style("ink");
   const bool svg = state.range(0) == 1;
   state.SetLabel(svg ? "ink svg" : "ink png");
-  render_card_command(files, style, svg);  // fills the result cache, as a first run would
+  render_command(glb, files, style, svg);  // fills the result cache, as a first run would
   for (auto _ : state)
-    render_card_command(files, style, svg);
+    render_command(glb, files, style, svg);
 }
+
+void BM_CardTreeCommand(benchmark::State& state) { run_command(state, card_files().glb); }
 BENCHMARK(BM_CardTreeCommand)
+    ->DenseRange(0, 1)
+    ->ArgName("svg")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The same on the shared weeping willow.
+void BM_WillowCommand(benchmark::State& state) {
+  run_command(state, fs::path(SYLVA_SHARED_DIR) / "assets/sapling_weeping_willow_s2.glb");
+}
+BENCHMARK(BM_WillowCommand)
     ->DenseRange(0, 1)
     ->ArgName("svg")
     ->Unit(benchmark::kMillisecond)
