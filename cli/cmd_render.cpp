@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
@@ -15,6 +14,7 @@
 #include "core/error.h"
 #include "core/gl/raster_pass.h"
 #include "core/io/atomic_file.h"
+#include "core/io/buffer_files.h"
 #include "core/io/image_io.h"
 #include "styles/style.h"
 
@@ -71,25 +71,6 @@ void write_graph(const std::string& path, const RenderGraph& graph) {
   if (!path.empty()) write_file_atomic(path, graph.to_dot());
 }
 
-std::string camera_json(const Camera& c) {
-  auto mat = [](const glm::mat4& m) {
-    nlohmann::json rows = nlohmann::json::array();  // row-major: rows[i][j] = m[j][i]
-    for (int i = 0; i < 4; ++i)
-      rows.push_back({m[0][i], m[1][i], m[2][i], m[3][i]});
-    return rows;
-  };
-  nlohmann::json j = {{"width", c.width},
-                      {"height", c.height},
-                      {"near", c.near_plane},
-                      {"far", c.far_plane},
-                      {"orthographic", c.ortho},
-                      {"eye", {c.eye.x, c.eye.y, c.eye.z}},
-                      {"view", mat(c.view)},
-                      {"projection", mat(c.proj)},
-                      {"matrix_layout", "row-major, column vectors: p_view = view * p_world"}};
-  return j.dump(2) + "\n";
-}
-
 }  // namespace
 
 Action add_render_command(CLI::App& app) {
@@ -110,15 +91,17 @@ Action add_render_command(CLI::App& app) {
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   cmd->add_option("-o,--output", o->out,
-                  "Output image (.png or .jpg), or vector lines (.svg or .pdf) of a line style")
+                  "Output image (.png, .jpg, or .exr: linear half RGBA, premultiplied), or vector "
+                  "lines (.svg or .pdf) of a line style")
       ->required();
   cmd->add_option("--dpi", o->dpi,
-                  "Pixels per inch of .svg/.pdf output: its page size in mm/points (0 = px, "
-                  "and one point per px in PDF); [0, 10000]")
+                  "Pixels per inch: the page size of .svg/.pdf output in mm/points (0 = px, and "
+                  "one point per px in PDF), a .png's pHYs, an .exr's xDensity (0 = none); "
+                  "[0, 10000]")
       ->capture_default_str();
   return [o, cmd] {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
-    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg", ".svg", ".pdf"});
+    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg", ".exr", ".svg", ".pdf"});
     const bool vector = is_vector_path(o->out);
     if (vector) require_line_style(*style, "--style");
     check_dpi(o->dpi, "--dpi");
@@ -135,7 +118,7 @@ Action add_render_command(CLI::App& app) {
       write_vector_drawing(o->out, graph.get<StrokeDrawing>(plan.strokes[0]),
                            vector_page(*style, o->view, o->dpi));
     else
-      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]));
+      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]), o->dpi);
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
                 style->info().name.c_str());
   };
@@ -150,10 +133,12 @@ Action add_buffers_command(CLI::App& app) {
     std::string style = "standard";
     std::vector<std::string> sets;
     std::string dir, list = "color,normal,depth,position,id,ka", graph;
+    BufferFiles files;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand(
-      "buffers", "Write the G-buffers (lossless TIFF/PNG), camera.json and 8-bit previews");
+      "buffers",
+      "Write the G-buffers (lossless TIFF/PNG and 8-bit previews, or one OpenEXR) and camera.json");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
   add_illumination_options(*cmd, o->illumination);
@@ -168,8 +153,14 @@ Action add_buffers_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")
       ->capture_default_str();
+  cmd->add_option("--format", o->files.format,
+                  "tiff: a file per buffer; exr: one multi-channel buffers.exr")
+      ->capture_default_str();
+  cmd->add_option("--compression", o->files.compression, "EXR compression: none, zip or piz")
+      ->capture_default_str();
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   return [o, cmd, normals] {
+    check_buffer_files(o->files);
     TargetMask wanted = 0;
     std::stringstream ss(o->list);
     for (std::string name; std::getline(ss, name, ',');) {
@@ -213,32 +204,10 @@ Action add_buffers_command(CLI::App& app) {
     fs::create_directories(dir, ec);
     if (ec) throw InputError("--out-dir", "cannot create '" + o->dir + "': " + ec.message());
     write_graph(o->graph, graph);
-    auto path = [&](const std::string& name) { return (dir / name).string(); };
-    for (Target t : kAllTargets) {
-      if (!has(wanted, t)) continue;
-      const cv::Mat& m = graph.get<cv::Mat>(gb.of(t));
-      std::string name = target_name(t);
-      if (t == Target::Color || t == Target::Albedo) {
-        write_image(path(name + ".png"), m);
-        continue;
-      }
-      cv::Mat file = m, preview;
-      if (t == Target::Id) {
-        m.convertTo(file, CV_32F);  // exact for ids below 2^24
-        preview = preview_ids(m);
-      } else if (t == Target::Normal) {
-        preview = preview_normal(m);
-      } else if (t == Target::Position) {
-        preview = preview_position(m);
-      } else if (t == Target::Depth) {
-        preview = preview_depth(m);
-      } else {
-        preview = preview_scalar(m);
-      }
-      write_image(path(name + ".tiff"), file);
-      write_image(path(name + ".preview.png"), preview);
-    }
-    write_file_atomic(path("camera.json"), camera_json(camera));
+    BufferImages buffers;
+    for (Target t : kAllTargets)
+      if (has(wanted, t)) buffers.emplace_back(t, graph.get<cv::Mat>(gb.of(t)));
+    write_buffer_files(dir, buffers, camera, o->files);
     std::printf("wrote %s buffers to %s\n", o->list.c_str(), o->dir.c_str());
   };
 }

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/gl/depth_range.h"
+#include "core/io/exr_writer.h"
 #include "core/io/image_io.h"
 #include "core/io/pdf_writer.h"
 #include "styles/presets.h"
@@ -115,14 +116,24 @@ void write_vector_drawing(const std::string& path, const StrokeDrawing& d, const
     write_svg(path, d, page);
 }
 
-void write_styled_image(const std::string& path, const cv::Mat& bgra) {
-  if (path.ends_with(".jpg") || path.ends_with(".jpeg")) {
+void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".jpg" || ext == ".jpeg") {
     cv::Mat bgr;
     cv::cvtColor(bgra, bgr, cv::COLOR_BGRA2BGR);
     write_image(path, bgr);
     return;
   }
-  write_image(path, bgra);
+  if (ext == ".exr") {
+    ExrImage exr;
+    add_exr_colour(exr, bgra, "");
+    exr.dpi = dpi;
+    write_exr(path, exr);
+    return;
+  }
+  write_image(path, bgra, dpi);
 }
 
 }  // namespace sylva::cli

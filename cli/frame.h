@@ -44,8 +44,9 @@ std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& nam
 // (cache, --surface-out) and the seed comes from the scene options.
 SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint64_t seed);
 
-// Writes a style's BGRA image as .png (with alpha) or .jpg (alpha dropped), atomically.
-void write_styled_image(const std::string& path, const cv::Mat& bgra);
+// Writes a style's BGRA image as .png (with alpha), .jpg (alpha dropped) or .exr (linear half
+// R, G, B premultiplied, A), atomically; `dpi` > 0 goes into a PNG's pHYs or an EXR's xDensity.
+void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi = 0.0);
 
 // Vector output (.svg, .pdf): whether `path` asks for it; InputError(option, ...) naming the
 // styles that can when `style` draws no strokes.

@@ -2,6 +2,8 @@
 // set a jump point keep nothing with a destructor alive across libpng calls.
 #include "core/io/codecs_png.h"
 
+#include <cmath>
+
 #include <png.h>
 #include <zlib.h>
 
@@ -114,6 +116,10 @@ bool encode_png(const cv::Mat& image, const PngEncodeOptions& options, std::stri
   png_set_IHDR(png, info, png_uint_32(image.cols), png_uint_32(image.rows),
                image.depth() == CV_16U ? 16 : 8, kColorTypes[image.channels() - 1],
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (options.dpi > 0.0) {
+    const auto per_metre = png_uint_32(std::lround(options.dpi / 0.0254));
+    png_set_pHYs(png, info, per_metre, per_metre, PNG_RESOLUTION_METER);
+  }
   png_write_info(png, info);
   if (image.channels() >= 3) png_set_bgr(png);  // OpenCV's channel order
   if (image.depth() == CV_16U && std::endian::native == std::endian::little) png_set_swap(png);

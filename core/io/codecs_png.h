@@ -15,11 +15,12 @@ struct PngEncodeOptions {
   int level = 3;            // zlib level, 0 (store) .. 9 (smallest)
   bool sub_filter = false;  // the SUB row filter on every row; false: no filter
   bool rle = false;         // zlib's Z_RLE strategy; false: libpng's default
+  double dpi = 0.0;         // > 0: a pHYs chunk of round(dpi / 0.0254) pixels per metre
 };
 
 // What cv::imencode(".png") does without parameters in OpenCV 4.6: zlib level 1, SUB row
 // filter, Z_RLE. The same settings through the same libpng and zlib give the same bytes.
-inline constexpr PngEncodeOptions kOpenCvPng = {1, true, true};
+inline constexpr PngEncodeOptions kOpenCvPng = {1, true, true, 0.0};
 
 // Appends the PNG to `out`. False when libpng fails; `image` must be 8/16-bit, 1-4 channels.
 bool encode_png(const cv::Mat& image, const PngEncodeOptions& options, std::string& out);

@@ -19,7 +19,7 @@ namespace {
 // its adaptive filtering at zlib level 6 took 57 ms of a 1024² ink render's 0.76 s. Level 3
 // without filters takes a seventh of that; line drawings (flat paper, runs of ink) come out
 // smaller, shaded renders about 15% larger.
-constexpr PngEncodeOptions kPngOptions = {3, false, false};
+constexpr PngEncodeOptions kPngOptions = {3, false, false, 0.0};
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -35,6 +35,10 @@ bool all_finite(const cv::Mat& image) {
 }
 
 void write_image(const std::string& path, const cv::Mat& image) {
+  write_image(path, image, 0.0);
+}
+
+void write_image(const std::string& path, const cv::Mat& image, double dpi) {
   SYLVA_CHECK(!image.empty(), "write_image: empty image for " + path);
   SYLVA_CHECK(all_finite(image), "write_image: non-finite values in " + path);
   std::string ext = lower_extension(path);
@@ -43,7 +47,9 @@ void write_image(const std::string& path, const cv::Mat& image) {
     SYLVA_CHECK(image.channels() >= 1 && image.channels() <= 4, "PNG needs 1 to 4 channels");
     std::string png;
     png.reserve(image.total() * image.elemSize() / 8);
-    if (!encode_png(image, kPngOptions, png)) throw InputError(path, "cannot encode image as .png");
+    PngEncodeOptions options = kPngOptions;
+    options.dpi = dpi;
+    if (!encode_png(image, options, png)) throw InputError(path, "cannot encode image as .png");
     write_file_atomic(path, png);
     return;
   }

@@ -250,7 +250,8 @@ TEST(Cli, BuffersReadBackExactly) {
       ++covered;
       EXPECT_GT(i, 0.0f);
       EXPECT_NEAR(cv::norm(n), 1.0, 1e-3);
-      EXPECT_NEAR(-p[2], d, 1e-3 * d);  // depth is the distance along the view axis
+      // OpenCV reads the file's R, G, B (x, y, z) as channels 2, 1, 0.
+      EXPECT_NEAR(-p[0], d, 1e-3 * d);  // depth is the distance along the view axis
       EXPECT_GE(ka.at<float>(y, x), 0.0f);
       EXPECT_LE(ka.at<float>(y, x), 1.0f);
     }

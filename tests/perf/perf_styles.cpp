@@ -231,7 +231,9 @@ void run_command(benchmark::State& state, const fs::path& glb) {
     render_command(glb, files, style, svg);
 }
 
-void BM_CardTreeCommand(benchmark::State& state) { run_command(state, card_files().glb); }
+void BM_CardTreeCommand(benchmark::State& state) {
+  run_command(state, card_files().glb);
+}
 BENCHMARK(BM_CardTreeCommand)
     ->DenseRange(0, 1)
     ->ArgName("svg")
