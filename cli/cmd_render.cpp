@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "cli/cryptomatte_render.h"
 #include "cli/frame.h"
 #include "cli/illumination_options.h"
 #include "core/error.h"
@@ -151,16 +152,23 @@ Action add_buffers_command(CLI::App& app) {
   cmd->add_option("--buffers", o->list,
                   "Comma-separated: color,normal,depth,position,id,ka,albedo,ao (ao: see ao.model)")
       ->capture_default_str();
-  cmd->add_option("--id", o->view.id_kind, "Ids in id.tiff: primitive, cluster or object")
+  cmd->add_option("--id", o->view.id_kind,
+                  "Ids in the id buffer: primitive, cluster, object or material")
       ->capture_default_str();
   cmd->add_option("--format", o->files.format,
                   "tiff: a file per buffer; exr: one multi-channel buffers.exr")
       ->capture_default_str();
   cmd->add_option("--compression", o->files.compression, "EXR compression: none, zip or piz")
       ->capture_default_str();
+  cmd->add_option("--cryptomatte", o->files.cryptomatte,
+                  "EXR Cryptomatte layers: object, material, asset (leaf clusters), or none")
+      ->capture_default_str();
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   return [o, cmd, normals] {
     check_buffer_files(o->files);
+    const std::vector<std::string> mattes = o->files.format == "exr"
+                                                ? parse_cryptomatte_list(o->files.cryptomatte)
+                                                : std::vector<std::string>{};
     TargetMask wanted = 0;
     std::stringstream ss(o->list);
     for (std::string name; std::getline(ss, name, ',');) {
@@ -200,6 +208,7 @@ Action add_buffers_command(CLI::App& app) {
     graph.compile();
     graph.execute();
     const Camera camera = frame->setup.camera;
+    const std::vector<CryptomatteImage> crypto = render_cryptomattes(*frame, mattes);
     release_frame(frame);
     fs::create_directories(dir, ec);
     if (ec) throw InputError("--out-dir", "cannot create '" + o->dir + "': " + ec.message());
@@ -207,7 +216,7 @@ Action add_buffers_command(CLI::App& app) {
     BufferImages buffers;
     for (Target t : kAllTargets)
       if (has(wanted, t)) buffers.emplace_back(t, graph.get<cv::Mat>(gb.of(t)));
-    write_buffer_files(dir, buffers, camera, o->files);
+    write_buffer_files(dir, buffers, camera, o->files, crypto);
     std::printf("wrote %s buffers to %s\n", o->list.c_str(), o->dir.c_str());
   };
 }

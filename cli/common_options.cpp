@@ -148,8 +148,10 @@ void resolve_view_options(ViewOptions& o) {
   if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
   for (const std::string& l : o.lights)
     parse_light(l);
-  if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object")
-    throw InputError("--id", "expected primitive, cluster or object, got '" + o.id_kind + "'");
+  if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object" &&
+      o.id_kind != "material")
+    throw InputError("--id",
+                     "expected primitive, cluster, object or material, got '" + o.id_kind + "'");
 }
 
 void apply_ground_option(Scene& scene, const ViewOptions& o) {
@@ -160,9 +162,10 @@ RasterRequest raster_request(const ViewOptions& o) {
   RasterRequest r;
   r.ssaa = o.ssaa;
   r.background = parse_background(o.background);
-  r.id_kind = o.id_kind == "cluster"  ? IdKind::Cluster
-              : o.id_kind == "object" ? IdKind::Object
-                                      : IdKind::Primitive;
+  r.id_kind = o.id_kind == "cluster"    ? IdKind::Cluster
+              : o.id_kind == "object"   ? IdKind::Object
+              : o.id_kind == "material" ? IdKind::Material
+                                        : IdKind::Primitive;
   return r;
 }
 

@@ -10,7 +10,7 @@ packages=(
   libosmesa6-dev libopencv-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
   libpng-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
-  libopenexr-dev librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools
+  libopenexr-dev libmurmurhash-dev librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools
   python3-openimageio python3-numpy
 )
 missing=()

@@ -38,11 +38,16 @@ inline constexpr Target kAllTargets[] = {Target::Color,    Target::Normal, Targe
                                          Target::Albedo,   Target::Ao};
 inline constexpr TargetMask kAllTargetsMask = (1u << 8) - 1u;
 
-enum class IdKind { Primitive, Cluster, Object };  // Object = mesh index + 1
+// Object = mesh index + 1; Material = the mesh's material index + 1, or the number of
+// materials + 1 for meshes without one (the default grey).
+enum class IdKind { Primitive, Cluster, Object, Material };
 
 struct GBuffer {
   TargetMask targets = 0;
   cv::Mat color, normal, depth, position, id, ka, albedo, ao;
+  // The id target's samples before down-sampling (ssaa x the size, rows top to bottom), when
+  // RasterRequest::id_samples asks for them; at ssaa 1 the id image itself.
+  cv::Mat id_samples;
 };
 
 // The image of one target (empty when it was not rendered).

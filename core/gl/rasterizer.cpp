@@ -265,7 +265,7 @@ struct Rasterizer::Impl {
       }
       const RasterProgram& p = *variant;
       glUseProgram(p.id);
-      glUniform1ui(p.object_id, m.object_id);
+      glUniform1ui(p.object_id, request.id_kind == IdKind::Material ? material_id(m) : m.object_id);
       glUniform4fv(p.base_color, 1, &mat.base_color[0]);
       glUniform1i(p.has_texture, has_texture ? 1 : 0);
       glUniform1f(p.alpha_cutoff, cutoff);
@@ -315,7 +315,11 @@ struct Rasterizer::Impl {
     return coverage;
   }
 
-  GBuffer read_back(TargetMask targets, int ssaa) const {
+  uint32_t material_id(const GpuMesh& m) const {
+    return m.material >= 0 ? uint32_t(m.material) + 1 : uint32_t(materials.size()) + 1;
+  }
+
+  GBuffer read_back(TargetMask targets, int ssaa, bool id_samples) const {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     GBuffer out;
@@ -331,6 +335,7 @@ struct Rasterizer::Impl {
       if (t == Target::Color || t == Target::Albedo) {
         m = downsample_color(m, ssaa);
       } else if (t == Target::Id) {
+        if (id_samples) cv::flip(m, out.id_samples, 0);
         m = downsample_id(m, ssaa);
       } else if (ssaa > 1) {
         m = downsample_covered(m, coverage, ssaa, t == Target::Normal);
@@ -450,7 +455,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  return s.read_back(request.targets, request.ssaa);
+  return s.read_back(request.targets, request.ssaa, request.id_samples);
 }
 
 TargetMask Rasterizer::last_allocated_targets() const {

@@ -29,6 +29,7 @@ struct RasterRequest {
   bool flat_albedo = false;          // albedo target: each texture's mean colour (flat toon tones)
   AoShading ao;                      // the AO target and the colour's ambient visibility
   uint32_t only_cluster = 0;         // > 0: draw only the triangles of this cluster id
+  bool id_samples = false;           // keep the id target's samples too (GBuffer::id_samples)
 };
 
 // Replacement per-vertex shading inputs, per scene mesh (scene order): normals (world

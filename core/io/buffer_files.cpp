@@ -102,11 +102,14 @@ void add_buffer_channels(ExrImage& exr, Target t, const cv::Mat& m) {
 }
 
 void write_exr_file(const std::filesystem::path& path, const BufferImages& buffers,
-                    const Camera& camera, const BufferFiles& files) {
+                    const Camera& camera, const BufferFiles& files,
+                    const std::vector<CryptomatteImage>& mattes) {
   ExrImage exr;
   exr.compression = parse_exr_compression(files.compression, "--compression");
   for (const auto& [t, m] : buffers)
     add_buffer_channels(exr, t, m);
+  for (const CryptomatteImage& m : mattes)
+    add_cryptomatte(exr, m.layer, m.samples, m.factor, cryptomatte_ranks(m.factor));
   exr.camera =
       ExrCamera{camera.view, camera.proj * camera.view, camera.near_plane, camera.far_plane};
   write_exr(path.string(), exr);
@@ -115,9 +118,10 @@ void write_exr_file(const std::filesystem::path& path, const BufferImages& buffe
 }  // namespace
 
 void write_buffer_files(const std::filesystem::path& dir, const BufferImages& buffers,
-                        const Camera& camera, const BufferFiles& files) {
+                        const Camera& camera, const BufferFiles& files,
+                        const std::vector<CryptomatteImage>& mattes) {
   if (files.format == "exr")
-    write_exr_file(dir / "buffers.exr", buffers, camera, files);
+    write_exr_file(dir / "buffers.exr", buffers, camera, files, mattes);
   else
     write_tiff_set(dir, buffers);
   write_file_atomic((dir / "camera.json").string(), camera_json(camera));

@@ -11,13 +11,28 @@
 
 #include "core/gl/camera.h"
 #include "core/gl/gbuffer.h"
+#include "core/io/cryptomatte.h"
 
 namespace sylva {
 
 struct BufferFiles {
-  std::string format = "tiff";      // tiff | exr
-  std::string compression = "zip";  // exr: none | zip | piz
+  std::string format = "tiff";                        // tiff | exr
+  std::string compression = "zip";                    // exr: none | zip | piz
+  std::string cryptomatte = "object,material,asset";  // exr: the layers, or none
 };
+
+// One Cryptomatte layer's names and id samples (core/io/cryptomatte.h).
+struct CryptomatteImage {
+  CryptomatteLayer layer;
+  cv::Mat samples;  // CV_32SC1, factor x the image size
+  int factor = 1;
+};
+
+// Ranks (id, coverage pairs) per Cryptomatte layer: 2 (one RGBA layer, 00) when each pixel is
+// one sample; with SSAA the specification's suggested 6 (00, 01, 02).
+inline int cryptomatte_ranks(int factor) {
+  return factor > 1 ? 6 : 2;
+}
 
 // InputError naming the option and the allowed values.
 void check_buffer_files(const BufferFiles& files);
@@ -26,8 +41,10 @@ void check_buffer_files(const BufferFiles& files);
 using BufferImages = std::vector<std::pair<Target, cv::Mat>>;
 
 // Writes the buffers into `dir` (which exists), each file atomically: color.png, albedo.png,
-// <name>.tiff and <name>.preview.png, or buffers.exr; then camera.json.
+// <name>.tiff and <name>.preview.png, or buffers.exr (with the Cryptomatte layers); then
+// camera.json.
 void write_buffer_files(const std::filesystem::path& dir, const BufferImages& buffers,
-                        const Camera& camera, const BufferFiles& files);
+                        const Camera& camera, const BufferFiles& files,
+                        const std::vector<CryptomatteImage>& mattes = {});
 
 }  // namespace sylva

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
 #include <map>
+#include <sstream>
+#include <vector>
 
 #include "tests/test_support.h"
 
@@ -29,6 +34,32 @@ const std::string& sampled_scene(const std::string& tag, const std::string& args
 
 const std::string& small_tree() {
   return sampled_scene("tree", "tree --leaves 2000 --seed 3");
+}
+
+cv::Mat oiio_channels(const std::string& image, const std::string& names, const std::string& dir) {
+  static int n = 0;
+  const std::string out = dir + "/oiio-" + std::to_string(n++);
+  std::filesystem::create_directories(out);
+  std::string list = names;
+  std::replace(list.begin(), list.end(), ',', ' ');
+  const RunResult r =
+      run_command("/usr/bin/python3 " + source_dir() + "/tests/tools/read_channels.py " + image +
+                  " " + out + " " + list);
+  EXPECT_EQ(r.status, 0) << r.output;
+  if (r.status != 0) return {};
+  std::vector<cv::Mat> planes;
+  std::istringstream lines(r.output);
+  std::string name, kind;
+  for (int w = 0, h = 0; lines >> name >> kind >> w >> h;) {
+    const std::string bytes = read_file(out + "/" + name + ".raw");
+    if (bytes.size() != size_t(w) * size_t(h) * 4) return {};
+    cv::Mat m(h, w, kind == "uint" ? CV_32SC1 : CV_32FC1);
+    std::memcpy(m.data, bytes.data(), bytes.size());
+    planes.push_back(m);
+  }
+  cv::Mat merged;
+  cv::merge(planes, merged);
+  return merged;
 }
 
 }  // namespace sylva::test

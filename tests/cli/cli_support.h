@@ -1,6 +1,7 @@
 // Helpers of the end-to-end CLI tests (tests/cli).
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <string>
 
 namespace sylva::test {
@@ -13,5 +14,11 @@ const std::string& sampled_scene(const std::string& tag, const std::string& args
 
 // A small sample tree (2000 leaves, seed 3), generated once per test program.
 const std::string& small_tree();
+
+// Channels of an image read by OpenImageIO (tests/tools/read_channels.py, a reader nobody here
+// wrote): a comma-separated list of names, merged in that order; float and half channels as
+// CV_32F, uint ones as CV_32S (the same bits); scratch files go to `dir`. An empty Mat (and a
+// test failure) when the reader fails.
+cv::Mat oiio_channels(const std::string& image, const std::string& names, const std::string& dir);
 
 }  // namespace sylva::test

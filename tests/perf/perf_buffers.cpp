@@ -2,7 +2,8 @@
 // writing every G-buffer of the 100k-leaf sample tree at 1024² (colour, normal, depth, position,
 // id, ka, albedo; rendered once outside the timed loop) as `sylva buffers` writes them: the
 // TIFF set (a file per buffer, 8-bit previews, camera.json), or one multi-channel EXR with
-// ZIP, PIZ or no compression. Reports medians (run with --benchmark_repetitions) and the bytes
+// ZIP, PIZ or no compression, and ZIP with the Cryptomatte layers of objects, materials and
+// clusters. Reports medians (run with --benchmark_repetitions) and the bytes
 // written as a counter; the EXR/TIFF time ratio is worked out from the medians.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -22,6 +23,7 @@ namespace fs = std::filesystem;
 
 struct Buffers {
   BufferImages images;
+  std::vector<CryptomatteImage> mattes;  // object, material and cluster ids, one sample a pixel
   Camera camera;
   Buffers() {
     Scene scene = perf::sample_tree(100'000);
@@ -35,6 +37,19 @@ struct Buffers {
     const GBuffer g = raster.render(camera, Lighting::three_point(), request);
     for (Target t : kAllTargets)
       if (has(request.targets, t)) images.emplace_back(t, target_image(g, t).clone());
+    request.targets = static_cast<TargetMask>(Target::Id);
+    request.id_samples = true;
+    for (IdKind kind : {IdKind::Object, IdKind::Material, IdKind::Cluster}) {
+      request.id_kind = kind;
+      CryptomatteImage m;
+      m.samples = raster.render(camera, Lighting::three_point(), request).id_samples;
+      double most = 0;
+      cv::minMaxLoc(m.samples, nullptr, &most);
+      m.layer.name = "Crypto" + std::to_string(int(kind));
+      for (int i = 1; i <= int(most); ++i)
+        m.layer.names.push_back("name_" + std::to_string(i));
+      mattes.push_back(std::move(m));
+    }
   }
 };
 
@@ -50,25 +65,30 @@ uintmax_t folder_bytes(const fs::path& dir) {
   return bytes;
 }
 
+// 4: exr zip with the three Cryptomatte layers (their id renders not timed).
 const char* const kFormats[][2] = {
-    {"tiff", "zip"}, {"exr", "zip"}, {"exr", "piz"}, {"exr", "none"}};
+    {"tiff", "zip"}, {"exr", "zip"}, {"exr", "piz"}, {"exr", "none"}, {"exr", "zip"}};
 
 void BM_WriteBuffers(benchmark::State& state) {
   const Buffers& b = buffers();
   BufferFiles files;
   files.format = kFormats[state.range(0)][0];
   files.compression = kFormats[state.range(0)][1];
-  state.SetLabel(files.format == "tiff" ? "tiff set" : "exr " + files.compression);
+  const bool crypto = state.range(0) == 4;
+  state.SetLabel(files.format == "tiff"
+                     ? "tiff set"
+                     : "exr " + files.compression + (crypto ? " cryptomatte" : ""));
   const fs::path dir =
       fs::temp_directory_path() / ("sylva-perf-buffers-" + std::to_string(getpid()));
   fs::create_directories(dir);
   for (auto _ : state)
-    write_buffer_files(dir, b.images, b.camera, files);
+    write_buffer_files(dir, b.images, b.camera, files,
+                       crypto ? b.mattes : std::vector<CryptomatteImage>{});
   state.counters["bytes"] = double(folder_bytes(dir));
   fs::remove_all(dir);
 }
 BENCHMARK(BM_WriteBuffers)
-    ->DenseRange(0, 3)
+    ->DenseRange(0, 4)
     ->ArgName("format")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
