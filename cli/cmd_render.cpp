@@ -72,6 +72,20 @@ void write_graph(const std::string& path, const RenderGraph& graph) {
   if (!path.empty()) write_file_atomic(path, graph.to_dot());
 }
 
+// --bit-depth: 0 (the format's own: 16 for TIFF, else 8), or 8 / 16 where the format holds it.
+int resolve_bit_depth(int bits, const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool tiff = ext == ".tif" || ext == ".tiff";
+  if (bits == 0) return tiff ? 16 : 8;
+  if (bits != 8 && bits != 16)
+    throw InputError("--bit-depth", "must be 8 or 16, got " + std::to_string(bits));
+  if (bits == 16 && !tiff && ext != ".png")
+    throw InputError("--bit-depth", "16 bits need a .png or .tiff output, not '" + path + "'");
+  return bits;
+}
+
 }  // namespace
 
 Action add_render_command(CLI::App& app) {
@@ -83,6 +97,7 @@ Action add_render_command(CLI::App& app) {
     std::vector<std::string> sets;
     std::string out, graph;
     double dpi = 0.0;
+    int bit_depth = 0;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene in a style to an image");
@@ -92,17 +107,23 @@ Action add_render_command(CLI::App& app) {
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   cmd->add_option("-o,--output", o->out,
-                  "Output image (.png, .jpg, or .exr: linear half RGBA, premultiplied), or vector "
-                  "lines (.svg or .pdf) of a line style")
+                  "Output image (.png, .jpg, .tiff, or .exr: linear half RGBA, premultiplied), or "
+                  "vector lines (.svg or .pdf) of a line style")
       ->required();
   cmd->add_option("--dpi", o->dpi,
                   "Pixels per inch: the page size of .svg/.pdf output in mm/points (0 = px, and "
                   "one point per px in PDF), a .png's pHYs, an .exr's xDensity (0 = none); "
                   "[0, 10000]")
       ->capture_default_str();
+  cmd->add_option("--bit-depth", o->bit_depth,
+                  "Bits per channel of .png (8 or 16) and .tiff (8 or 16); 0 = 8 for .png, 16 "
+                  "for .tiff. 16 holds the styles' 8-bit values widened (x 257)")
+      ->capture_default_str();
   return [o, cmd] {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
-    check_output_path("--output", o->out, {".png", ".jpg", ".jpeg", ".exr", ".svg", ".pdf"});
+    check_output_path("--output", o->out,
+                      {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".exr", ".svg", ".pdf"});
+    const int bit_depth = resolve_bit_depth(o->bit_depth, o->out);
     const bool vector = is_vector_path(o->out);
     if (vector) require_line_style(*style, "--style");
     check_dpi(o->dpi, "--dpi");
@@ -119,7 +140,7 @@ Action add_render_command(CLI::App& app) {
       write_vector_drawing(o->out, graph.get<StrokeDrawing>(plan.strokes[0]),
                            vector_page(*style, o->view, o->dpi));
     else
-      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]), o->dpi);
+      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]), o->dpi, bit_depth);
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
                 style->info().name.c_str());
   };

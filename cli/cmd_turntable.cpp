@@ -106,16 +106,18 @@ Action add_turntable_command(CLI::App& app) {
                   "Write per-frame time and flicker (mean |change| inside the plant, 8-bit "
                   "levels) to a .csv");
   cmd->add_option("--frame-format", o->frame_format,
-                  "Folder output: png, or svg / pdf (the strokes of a line style: ink, pen) for "
-                  "plotters and motion work")
+                  "Folder output: png, exr (linear half RGBA, premultiplied, for compositing), or "
+                  "svg / pdf (the strokes of a line style: ink, pen) for plotters and motion work")
       ->capture_default_str();
-  cmd->add_option("--dpi", o->dpi, "svg/pdf frames: pixels per inch of the page, [0, 10000]")
+  cmd->add_option("--dpi", o->dpi,
+                  "Folder frames: pixels per inch (svg/pdf page size, png pHYs, exr xDensity), "
+                  "[0, 10000]")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "No progress output");
   cmd->add_option(
          "-o,--output", o->out,
-         "Output .mp4, .gif, or a folder for frames frame-00000.png, ... (or .svg/.pdf with "
-         "--frame-format; a name without extension)")
+         "Output .mp4, .gif, or a folder for frames frame-00000.png, ... (or .exr/.svg/.pdf "
+         "with --frame-format; a name without extension)")
       ->required();
   return [o, cmd] {
     o->path.axis = o->axis.size() == 1 ? o->axis[0] : '?';
@@ -145,11 +147,12 @@ Action add_turntable_command(CLI::App& app) {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
     (void)last_keyframe(o->path.frames, o->keyframe_every);  // validates --keyframe-every
     const bool blobs = style->info().builder == "blobs";
-    if (o->frame_format != "png" && o->frame_format != "svg" && o->frame_format != "pdf")
-      throw InputError("--frame-format", "must be png, svg or pdf, not '" + o->frame_format + "'");
-    const bool vector = o->frame_format != "png";
-    if (vector && !to_dir)
-      throw InputError("--frame-format", "svg and pdf frames need a folder output");
+    const std::string& ff = o->frame_format;
+    if (ff != "png" && ff != "exr" && ff != "svg" && ff != "pdf")
+      throw InputError("--frame-format", "must be png, exr, svg or pdf, not '" + ff + "'");
+    const bool vector = ff == "svg" || ff == "pdf";
+    if (ff != "png" && !to_dir)
+      throw InputError("--frame-format", "exr, svg and pdf frames need a folder output");
     if (vector) require_line_style(*style, "--style");
     check_dpi(o->dpi, "--dpi");
     if (!blobs && (o->keyframe_every != 1 || !o->keyframe_cache.empty()))
@@ -197,7 +200,7 @@ Action add_turntable_command(CLI::App& app) {
       if (vector) {
         write_vector_drawing(file, *now.strokes, vector_page(*style, o->view, o->dpi));
       } else if (to_dir) {
-        write_image(file, now.image);
+        write_styled_image(file, now.image, o->dpi);
       } else if (gif) {
         gif->write(now.image);
       } else {

@@ -116,7 +116,7 @@ void write_vector_drawing(const std::string& path, const StrokeDrawing& d, const
     write_svg(path, d, page);
 }
 
-void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi) {
+void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi, int bit_depth) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext)
     c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -131,6 +131,12 @@ void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi
     add_exr_colour(exr, bgra, "");
     exr.dpi = dpi;
     write_exr(path, exr);
+    return;
+  }
+  if (bit_depth == 16) {
+    cv::Mat wide;
+    bgra.convertTo(wide, CV_16U, 257.0);  // 255 -> 65535
+    write_image(path, wide, dpi);
     return;
   }
   write_image(path, bgra, dpi);

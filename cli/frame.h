@@ -44,9 +44,12 @@ std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& nam
 // (cache, --surface-out) and the seed comes from the scene options.
 SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint64_t seed);
 
-// Writes a style's BGRA image as .png (with alpha), .jpg (alpha dropped) or .exr (linear half
-// R, G, B premultiplied, A), atomically; `dpi` > 0 goes into a PNG's pHYs or an EXR's xDensity.
-void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi = 0.0);
+// Writes a style's BGRA image as .png or .tiff (with alpha), .jpg (alpha dropped) or .exr
+// (linear half R, G, B premultiplied, A), atomically; `dpi` > 0 goes into a PNG's pHYs, a
+// TIFF's resolution or an EXR's xDensity. bit_depth 16 (PNG, TIFF) widens the 8-bit values
+// (v x 257).
+void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi = 0.0,
+                        int bit_depth = 8);
 
 // Vector output (.svg, .pdf): whether `path` asks for it; InputError(option, ...) naming the
 // styles that can when `style` draws no strokes.

@@ -56,6 +56,11 @@ void write_image(const std::string& path, const cv::Mat& image, double dpi) {
   std::vector<int> params;
   if (ext == ".tif" || ext == ".tiff") {
     params = {cv::IMWRITE_TIFF_COMPRESSION, 1};  // uncompressed: exact and fast
+    if (dpi > 0.0) {
+      const int d = int(std::lround(dpi));
+      params.insert(params.end(), {cv::IMWRITE_TIFF_RESUNIT, 2, cv::IMWRITE_TIFF_XDPI, d,
+                                   cv::IMWRITE_TIFF_YDPI, d});  // 2: inch
+    }
   } else if (ext == ".exr") {
     SYLVA_CHECK(image.depth() == CV_32F, "EXR needs float32");
   } else if (ext == ".jpg" || ext == ".jpeg") {

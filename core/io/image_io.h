@@ -12,8 +12,8 @@ namespace sylva {
 // PNGs (1-4 channels, BGR(A) order) are written by libpng, fast rather than small (zlib level
 // 3, no row filters); the other formats by OpenCV.
 void write_image(const std::string& path, const cv::Mat& image);
-// The same with a resolution in pixels per inch (> 0; 0 = none): a PNG's pHYs chunk. Other
-// formats ignore it.
+// The same with a resolution in pixels per inch (> 0; 0 = none): a PNG's pHYs chunk, a TIFF's
+// resolution tags (rounded to whole dpi). Other formats ignore it.
 void write_image(const std::string& path, const cv::Mat& image, double dpi);
 
 // Reads an image unchanged (cv::IMREAD_UNCHANGED). Throws InputError when unreadable.

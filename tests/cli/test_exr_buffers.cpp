@@ -4,7 +4,8 @@
 // exactly; a non-OpenCV TIFF reader (oiiotool) sees x in a 3-channel TIFF's R; the colour is
 // linear and premultiplied; every compression reads back the same; bad options and an
 // unwritable folder are one line, exit 2, nothing left. `render --dpi` writes a PNG's pHYs and an
-// EXR's xDensity, and `render -o X.exr` the linear, premultiplied colour.
+// EXR's xDensity, `render -o X.exr` the linear, premultiplied colour, `--bit-depth 16` and
+// `-o X.tiff` 16-bit files, `turntable --frame-format exr` EXR frames.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -102,9 +103,10 @@ void expect_channels_equal_tiffs(const BufferSets& s) {
 
 // R, G, B linear and premultiplied, A the coverage: color.png (B, G, R, A) through the sRGB
 // curve, to half precision.
-void expect_linear_colour(const BufferSets& s) {
-  const cv::Mat rgba = oiio_channels(s.exr + "/buffers.exr", "R,G,B,A", s.exr);
-  const cv::Mat png = cv::imread(s.tiff + "/color.png", cv::IMREAD_UNCHANGED);
+void expect_linear_colour(const std::string& exr, const std::string& png_path,
+                          const std::string& scratch) {
+  const cv::Mat rgba = oiio_channels(exr, "R,G,B,A", scratch);
+  const cv::Mat png = cv::imread(png_path, cv::IMREAD_UNCHANGED);
   ASSERT_EQ(rgba.type(), CV_32FC4);
   ASSERT_EQ(png.type(), CV_8UC4);
   double worst = 0.0;
@@ -127,7 +129,7 @@ TEST(ExrBuffers, SampleTreeChannelsAreTheBuffers) {
   const BufferSets s = write_both(small_tree(), "exr-sample", "160x120");
   expect_header(s.exr + "/buffers.exr");
   expect_channels_equal_tiffs(s);
-  expect_linear_colour(s);
+  expect_linear_colour(s.exr + "/buffers.exr", s.tiff + "/color.png", s.exr);
   EXPECT_TRUE(file_exists(s.exr + "/camera.json"));
   EXPECT_FALSE(file_exists(s.exr + "/normal.tiff"));
 }
@@ -200,13 +202,56 @@ TEST(RenderOutputs, DpiAndLinearExr) {
   EXPECT_NE(
       run_command("exrheader " + dir + "/linear.exr").output.find("xDensity (type float): 300"),
       std::string::npos);
-  const BufferSets s{dir, dir};
-  fs::rename(dir + "/print.png", dir + "/color.png");
-  fs::rename(dir + "/linear.exr", dir + "/buffers.exr");
-  expect_linear_colour(s);
+  expect_linear_colour(dir + "/linear.exr", dir + "/print.png", dir);
   expect_input_error(base + "--dpi 10001 -o " + dir + "/x.png", "--dpi");
   expect_input_error(base + "-o " + dir + "/x.tga", ".exr");
   EXPECT_FALSE(fs::exists(dir + "/x.png"));
+}
+
+// --bit-depth 16: a PNG and a TIFF that read back as 16-bit and hold the 8-bit picture widened
+// (x 257); OpenImageIO sees the TIFF's R as the picture's red; the TIFF carries --dpi.
+TEST(RenderOutputs, SixteenBitPngAndTiff) {
+  const std::string dir = temp_dir("render-16");
+  const std::string base = "render " + small_tree() + " --style toon --size 96 ";
+  ASSERT_EQ(run_sylva(base + "-o " + dir + "/8.png").status, 0);
+  ASSERT_EQ(run_sylva(base + "--bit-depth 16 -o " + dir + "/16.png").status, 0);
+  ASSERT_EQ(run_sylva(base + "--dpi 300 -o " + dir + "/16.tiff").status, 0);  // 16 by default
+  const cv::Mat eight = cv::imread(dir + "/8.png", cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(eight.type(), CV_8UC4);
+  cv::Mat widened;
+  eight.convertTo(widened, CV_16U, 257.0);
+  for (const char* name : {"16.png", "16.tiff"}) {
+    const cv::Mat wide = cv::imread(dir + "/" + name, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(wide.type(), CV_16UC4) << name;
+    EXPECT_EQ(cv::norm(wide, widened, cv::NORM_INF), 0.0) << name;
+  }
+  const cv::Mat red = oiio_channels(dir + "/16.tiff", "R", dir);  // uint16 read as [0, 1]
+  std::vector<cv::Mat> bgra;
+  cv::split(widened, bgra);
+  cv::Mat expected;
+  bgra[2].convertTo(expected, CV_32F, 1.0 / 65535.0);
+  EXPECT_LT(max_difference(red, expected), 1e-6);
+  const RunResult info = run_command("oiiotool --info -v " + dir + "/16.tiff");
+  EXPECT_NE(info.output.find("XResolution: 300"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("uint16"), std::string::npos) << info.output;
+  expect_input_error(base + "--bit-depth 12 -o " + dir + "/x.png", "8 or 16");
+  expect_input_error(base + "--bit-depth 16 -o " + dir + "/x.jpg", ".png or .tiff");
+  EXPECT_FALSE(fs::exists(dir + "/x.png"));
+}
+
+TEST(RenderOutputs, TurntableWritesExrFrames) {
+  const std::string dir = temp_dir("turntable-exr");
+  const std::string args = "turntable " + small_tree() + " --style toon --frames 2 --size 96 -q";
+  ASSERT_EQ(run_sylva(args + " -o " + dir + "/png/").status, 0);
+  const RunResult r = run_sylva(args + " --frame-format exr --dpi 150 -o " + dir + "/exr/");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* frame : {"frame-00000", "frame-00001"}) {
+    const std::string exr = dir + "/exr/" + frame + ".exr";
+    expect_linear_colour(exr, dir + "/png/" + frame + ".png", dir);
+    EXPECT_NE(run_command("exrheader " + exr).output.find("xDensity (type float): 150"),
+              std::string::npos);
+  }
+  expect_input_error(args + " --frame-format exr -o " + dir + "/t.mp4", "folder");
 }
 
 }  // namespace

@@ -178,7 +178,7 @@ TEST(LineStyles, TurntableWritesOneSvgPerFrame) {
                          "--frame-format svg -o " + dir + "/toon/",
                      "no lines");
   expect_input_error(args + " --frame-format svg -o " + dir + "/t.mp4", "folder");
-  expect_input_error(args + " --frame-format tiff -o " + dir + "/x/", "png, svg or pdf");
+  expect_input_error(args + " --frame-format tiff -o " + dir + "/x/", "png, exr, svg or pdf");
   EXPECT_FALSE(fs::exists(dir + "/toon"));
 }
 
