@@ -59,7 +59,7 @@ nlohmann::json describe(const Scene& scene) {
                  {"max", {b.max.x, b.max.y, b.max.z}},
                  {"diagonal", b.diagonal()}};
   j["hierarchy_branches"] = scene.hierarchy.branch_parent.size();
-  j["warnings"] = scene.report.warnings;
+  j["warnings"] = scene.report.warning_lines();
   return j;
 }
 
@@ -105,7 +105,7 @@ Action add_info_command(CLI::App& app) {
   add_scene_options(*cmd, o->scene);
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
   return [o] {
-    Scene scene = load_scene_for_cli(o->scene);
+    Scene scene = load_scene_for_cli(o->scene, false);
     nlohmann::json j = describe(scene);
     if (o->json)
       std::cout << j.dump(2) << "\n";

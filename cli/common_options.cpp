@@ -1,6 +1,7 @@
 #include "cli/common_options.h"
 
 #include <cmath>
+#include <cstdio>
 #include <regex>
 
 #include "core/color.h"
@@ -24,7 +25,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
   cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")->capture_default_str();
 }
 
-Scene load_scene_for_cli(const SceneOptions& o) {
+Scene load_scene_for_cli(const SceneOptions& o, bool print_warnings) {
   LoadOptions lo;
   lo.foliage = o.foliage;
   Scene scene = load_scene(o.path, lo);
@@ -32,6 +33,9 @@ Scene load_scene_for_cli(const SceneOptions& o) {
   co.clusters = o.clusters;
   co.seed = o.seed;
   assign_clusters(scene, co);
+  if (print_warnings)
+    for (const std::string& w : scene.report.warning_lines())
+      std::fprintf(stderr, "sylva: warning: %s: %s\n", o.path.c_str(), w.c_str());
   return scene;
 }
 

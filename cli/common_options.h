@@ -20,8 +20,9 @@ struct SceneOptions {
   uint64_t seed = 1;
 };
 void add_scene_options(CLI::App& cmd, SceneOptions& o);
-// Loads, classifies and clusters. Throws InputError on bad input.
-Scene load_scene_for_cli(const SceneOptions& o);
+// Loads, classifies and clusters. Throws InputError on bad input. With `print_warnings`, the
+// scene's warnings (one per kind) go to stderr as "sylva: warning: <file>: <what>" lines.
+Scene load_scene_for_cli(const SceneOptions& o, bool print_warnings = true);
 
 struct ViewOptions {
   std::string size = "1024x1024";

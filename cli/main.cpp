@@ -4,12 +4,16 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <opencv2/core/utils/logger.hpp>
 #include <string>
 
 #include "cli/commands.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  // OpenCV's own log lines ("[ WARN:0@0.1] global ...") would break the one-line contract; its
+  // failures reach sylva as exceptions and are reported from there.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   CLI::App app{
       "sylva: non-photorealistic illustrations of 3D plants and trees.\n"
       "Run 'sylva <command> --help' for a command's options."};

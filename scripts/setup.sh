@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config clang-format
   libosmesa6-dev libopencv-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
-  libpng-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
+  libpng-dev libjpeg-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
   libopenexr-dev libmurmurhash-dev librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools
   python3-openimageio python3-numpy
 )

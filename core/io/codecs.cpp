@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/codecs_jpeg.h"
 #include "core/io/codecs_png.h"
 
 namespace sylva {
@@ -80,9 +81,10 @@ const CodecsApi& codecs() {
   return *loaded.api;
 }
 
-cv::Mat decode_image(const unsigned char* bytes, size_t size) {
+cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report) {
   if (!bytes || size == 0 || size >= size_t(1) << 31) return cv::Mat();
-  if (is_png(bytes, size)) return decode_png(bytes, size);
+  if (is_png(bytes, size)) return decode_png(bytes, size, report);
+  if (is_jpeg(bytes, size)) return decode_jpeg(bytes, size, report);
   const cv::Mat encoded(1, int(size), CV_8U, const_cast<unsigned char*>(bytes));
   return codecs().decode(encoded, cv::IMREAD_UNCHANGED);
 }

@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/io/codecs_api.h"
+#include "core/io/decode_report.h"
 
 namespace sylva {
 
@@ -15,9 +16,10 @@ namespace sylva {
 // Throws std::runtime_error naming every path tried and dlerror() when none loads.
 const CodecsApi& codecs();
 
-// cv::imdecode(bytes, cv::IMREAD_UNCHANGED): PNG by libpng in process, any other format by the
-// plugin. An empty Mat when the data cannot be decoded; may throw cv::Exception as imdecode
-// does, and std::runtime_error when a non-PNG needs the plugin and it does not load.
-cv::Mat decode_image(const unsigned char* bytes, size_t size);
+// cv::imdecode(bytes, cv::IMREAD_UNCHANGED): PNG by libpng and JPEG by libjpeg in process (their
+// messages go to `report`, never to stderr), any other format by the plugin. An empty Mat when
+// the data cannot be decoded; may throw cv::Exception as imdecode does, and std::runtime_error
+// when another format needs the plugin and it does not load.
+cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
 
 }  // namespace sylva

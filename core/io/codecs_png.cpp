@@ -22,6 +22,18 @@ void png_append(png_structp png, png_bytep data, png_size_t length) {
 
 void png_flush(png_structp) {}
 
+// libpng's default handlers print "libpng error: ..." and "libpng warning: ..." to stderr; these
+// keep the message in the DecodeReport given as the error pointer (or drop it, for none).
+void png_on_error(png_structp png, png_const_charp message) {
+  auto* report = static_cast<DecodeReport*>(png_get_error_ptr(png));
+  if (report && report->error.empty()) report->error = message;
+  png_longjmp(png, 1);
+}
+
+void png_on_warning(png_structp png, png_const_charp message) {
+  if (auto* report = static_cast<DecodeReport*>(png_get_error_ptr(png))) report->warn(message);
+}
+
 struct ReadCursor {
   const unsigned char* data;
   size_t size;
@@ -50,8 +62,11 @@ bool read_png(png_structp png, png_infop info, png_infop end_info, cv::Mat& imag
   int bit_depth = 0, color_type = 0;
   png_get_IHDR(png, info, &width, &height, &bit_depth, &color_type, nullptr, nullptr, nullptr);
   if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide ||
-      static_cast<unsigned long long>(width) * height > kMaxPixels)
+      static_cast<unsigned long long>(width) * height > kMaxPixels) {
+    if (auto* report = static_cast<DecodeReport*>(png_get_error_ptr(png)))
+      report->error = "image size beyond 2^20 a side or 2^30 pixels";
     return false;
+  }
   int channels = 1;
   switch (color_type) {
     case PNG_COLOR_TYPE_RGB:
@@ -100,7 +115,8 @@ bool read_png(png_structp png, png_infop info, png_infop end_info, cv::Mat& imag
 }  // namespace
 
 bool encode_png(const cv::Mat& image, const PngEncodeOptions& options, std::string& out) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_on_error, png_on_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
   if (!info || setjmp(png_jmpbuf(png))) {
@@ -134,9 +150,10 @@ bool is_png(const unsigned char* bytes, size_t size) {
   return bytes && size >= 8 && png_sig_cmp(bytes, 0, 8) == 0;
 }
 
-cv::Mat decode_png(const unsigned char* bytes, size_t size) {
+cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report) {
   if (!is_png(bytes, size)) return cv::Mat();
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, report, png_on_error, png_on_warning);
   if (!png) return cv::Mat();
   png_infop info = png_create_info_struct(png);
   png_infop end_info = png_create_info_struct(png);

@@ -7,6 +7,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "core/io/decode_report.h"
+
 namespace sylva {
 
 // Row filter and zlib settings. The defaults are sylva's own (fast rather than small); see
@@ -31,7 +33,8 @@ bool is_png(const unsigned char* bytes, size_t size);
 // What cv::imdecode(bytes, cv::IMREAD_UNCHANGED) gives for a PNG in OpenCV 4.6: 16-bit kept;
 // grey (1-, 2-, 4-bit expanded) as 1 channel; grey+alpha as BGRA; RGB and palette as BGR, or
 // BGRA when a tRNS chunk is present. An empty Mat for data libpng cannot read or an image
-// beyond OpenCV's limits (2^20 a side, 2^30 pixels).
-cv::Mat decode_png(const unsigned char* bytes, size_t size);
+// beyond OpenCV's limits (2^20 a side, 2^30 pixels); libpng's reason and warnings go to `report`
+// (never to stderr).
+cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
 
 }  // namespace sylva

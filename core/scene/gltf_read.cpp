@@ -81,8 +81,8 @@ class Reader {
       const int tex = src.pbrMetallicRoughness.baseColorTexture.index;
       if (tex >= 0) mat.base_color_texture = texture(tex);
       if (src.pbrMetallicRoughness.baseColorTexture.texCoord != 0)
-        m_scene.report.warnings.push_back("material '" + src.name +
-                                          "': base colour uses TEXCOORD_1+, read as TEXCOORD_0");
+        m_scene.report.warn("texcoord", "material '" + src.name +
+                                            "': base colour uses TEXCOORD_1+, read as TEXCOORD_0");
       if (src.alphaMode == "MASK")
         mat.alpha_mode = AlphaMode::Mask;
       else if (src.alphaMode == "BLEND")
@@ -96,10 +96,11 @@ class Reader {
       mat.double_sided = src.doubleSided;
       if (mat.alpha_mode != AlphaMode::Opaque && mat.base_color_texture >= 0 &&
           opaque(m_scene.textures[size_t(mat.base_color_texture)]))
-        m_scene.report.warnings.push_back(
+        m_scene.report.warn(
+            "opaque alpha",
             "material '" + src.name + "': alpha " + alpha_mode_name(mat.alpha_mode) +
-            " but its base colour texture has no alpha (every texel opaque), so only the "
-            "geometry shapes the leaves");
+                " but its base colour texture has no alpha (every texel opaque), so only the "
+                "geometry shapes the leaves");
       m_scene.materials.push_back(mat);
     }
   }
@@ -117,11 +118,14 @@ class Reader {
     if (src < 0 || size_t(src) >= m_model.images.size())
       fail("texture " + std::to_string(tex) + " has no valid image source");
     if (m_texture_of_image[size_t(src)] >= 0) return m_texture_of_image[size_t(src)];
-    m_scene.textures.push_back(decode(size_t(src)));
+    std::vector<std::string> decoder_warnings;
+    m_scene.textures.push_back(decode(size_t(src), decoder_warnings));
+    for (const std::string& w : decoder_warnings)
+      m_scene.report.warn("image decoder", w);
     return m_texture_of_image[size_t(src)] = int(m_scene.textures.size() - 1);
   }
 
-  Texture decode(size_t index) const {
+  Texture decode(size_t index, std::vector<std::string>& warnings) const {
     const tinygltf::Image& img = m_model.images[index];
     const std::string what =
         "image " + std::to_string(index) + (img.name.empty() ? "" : " '" + img.name + "'");
@@ -129,7 +133,7 @@ class Reader {
     if (img.bufferView < 0) {
       if (img.image.empty() && !img.uri.empty())
         fail("missing texture file '" + img.uri + "' (" + what + ")");
-      return decode_texture(img.image.data(), img.image.size(), name, m_path, what);
+      return decode_texture(img.image.data(), img.image.size(), name, m_path, what, warnings);
     }
     if (size_t(img.bufferView) >= m_model.bufferViews.size()) fail(what + ": no such bufferView");
     const tinygltf::BufferView& view = m_model.bufferViews[size_t(img.bufferView)];
@@ -138,7 +142,8 @@ class Reader {
     const std::vector<unsigned char>& buffer = m_model.buffers[size_t(view.buffer)].data;
     if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
       fail(what + ": bufferView runs past the end of its buffer");
-    return decode_texture(buffer.data() + view.byteOffset, view.byteLength, name, m_path, what);
+    return decode_texture(buffer.data() + view.byteOffset, view.byteLength, name, m_path, what,
+                          warnings);
   }
 
   static glm::dmat4 local_matrix(const tinygltf::Node& node) {
@@ -222,15 +227,15 @@ class Reader {
       // Appended piecewise: "[" + std::string&& trips a GCC 12 -Wrestrict false positive.
       if (src.primitives.size() > 1) name.append("[").append(std::to_string(k)).append("]");
       if (prim.mode >= 0 && prim.mode <= 3) {
-        m_scene.report.warnings.push_back("mesh '" + name + "': points/lines primitive skipped");
+        m_scene.report.warn("points/lines", "mesh '" + name + "': points/lines primitive skipped");
         continue;
       }
       if (prim.mode < 0 || prim.mode > 6)
         fail("mesh '" + name + "': unknown primitive mode " + std::to_string(prim.mode));
       auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) {
-        m_scene.report.warnings.push_back("mesh '" + name +
-                                          "': primitive without POSITION skipped");
+        m_scene.report.warn("no POSITION",
+                            "mesh '" + name + "': primitive without POSITION skipped");
         continue;
       }
       Mesh mesh;
@@ -324,8 +329,8 @@ class Reader {
                                     const std::string& where) {
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       if (idx.size() % 3 != 0)
-        m_scene.report.warnings.push_back(
-            where + ": index count not a multiple of 3, extra indices ignored");
+        m_scene.report.warn("index count",
+                            where + ": index count not a multiple of 3, extra indices ignored");
       return std::vector<uint32_t>(idx.begin(), idx.begin() + long(idx.size() / 3 * 3));
     }
     std::vector<uint32_t> out;

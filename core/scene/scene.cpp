@@ -33,6 +33,24 @@ const char* alpha_mode_name(AlphaMode m) {
   return "OPAQUE";
 }
 
+void SceneReport::warn(const std::string& kind, const std::string& text) {
+  for (Kind& k : m_kinds)
+    if (k.name == kind) {
+      ++k.repeats;
+      return;
+    }
+  m_kinds.push_back({kind, warnings.size(), 0});
+  warnings.push_back(text);
+}
+
+std::vector<std::string> SceneReport::warning_lines() const {
+  std::vector<std::string> out = warnings;
+  for (const Kind& k : m_kinds)
+    if (k.repeats > 0 && k.line < out.size())
+      out[k.line] += " (and " + std::to_string(k.repeats) + " more like it)";
+  return out;
+}
+
 Bounds Scene::bounds() const {
   Bounds b;
   for (const Mesh& m : meshes)

@@ -98,8 +98,22 @@ struct SceneReport {
   std::string foliage_rule;    // e.g. "name match", "alpha MASK", "--foliage all"
   std::string foliage_reason;  // one line: which materials/meshes and why
   std::string cluster_method;  // "hierarchy (division diameter 0.05)" or "k-means (k=12, seed 1)"
-  size_t dropped_degenerate = 0;  // zero-area / repeated-index triangles removed on load
-  std::vector<std::string> warnings;
+  size_t dropped_degenerate = 0;      // zero-area / repeated-index triangles removed on load
+  std::vector<std::string> warnings;  // the first of each kind, one line each
+
+  // Keeps `text` if it is the first warning of its `kind` (e.g. "points/lines"); later ones of
+  // that kind are only counted, so a hostile file with 100,000 bad meshes gives one line.
+  void warn(const std::string& kind, const std::string& text);
+  // `warnings`, each followed by "(and N more like it)" when its kind repeated.
+  std::vector<std::string> warning_lines() const;
+
+ private:
+  struct Kind {
+    std::string name;
+    size_t line;     // its first warning's index in `warnings`
+    size_t repeats;  // warnings of this kind after the first
+  };
+  std::vector<Kind> m_kinds;
 };
 
 struct Scene {

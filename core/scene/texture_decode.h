@@ -1,12 +1,14 @@
 // Decoding an encoded image (PNG, JPEG, any bit depth, 1-4 channels) from memory into the
 // scene's 8-bit RGBA Texture: 16-bit is scaled down, grey/RGB get an opaque alpha. Bad data
-// throws InputError(path, "<what>: cannot decode ..."). PNG is decoded by libpng in process,
-// JPEG by the codecs plugin (core/io/codecs.h). Used by gltf_read.cpp; header-only so it needs
-// no build entry of its own.
+// throws InputError(path, "<what>: cannot decode ...: <the decoder's reason>"); a decoder's
+// warning (a damaged but readable image) is appended to `warnings` as "<what>: <warning>".
+// PNG and JPEG are decoded in process (core/io/codecs.h). Used by gltf_read.cpp; header-only so
+// it needs no build entry of its own.
 #pragma once
 
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/io/codecs.h"
@@ -16,16 +18,22 @@ namespace sylva {
 
 // `path` is the scene file and `what` names the image in error messages.
 inline Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& name,
-                              const std::string& path, const std::string& what) {
+                              const std::string& path, const std::string& what,
+                              std::vector<std::string>& warnings) {
   cv::Mat m;
+  DecodeReport report;
   if (bytes && size > 0 && size < size_t(1) << 31) {
     try {
-      m = decode_image(bytes, size);
+      m = decode_image(bytes, size, &report);
     } catch (const cv::Exception&) {
       m = cv::Mat();
     }
   }
-  if (m.empty()) throw InputError(path, what + ": cannot decode the image (PNG or JPEG expected)");
+  if (m.empty())
+    throw InputError(path, what + ": cannot decode the image (PNG or JPEG expected)" +
+                               (report.error.empty() ? "" : ": " + report.error));
+  for (const std::string& w : report.warnings)
+    warnings.push_back(what + ": " + w);
   if (m.depth() == CV_16U)
     m.convertTo(m, CV_8U, 1.0 / 257.0);
   else if (m.depth() != CV_8U)
