@@ -231,13 +231,13 @@ Action add_buffers_command(CLI::App& app) {
     const Camera camera = frame->setup.camera;
     const std::vector<CryptomatteImage> crypto = render_cryptomattes(*frame, mattes);
     release_frame(frame);
-    fs::create_directories(dir, ec);
-    if (ec) throw InputError("--out-dir", "cannot create '" + o->dir + "': " + ec.message());
     write_graph(o->graph, graph);
     BufferImages buffers;
     for (Target t : kAllTargets)
       if (has(wanted, t)) buffers.emplace_back(t, graph.get<cv::Mat>(gb.of(t)));
-    write_buffer_files(dir, buffers, camera, o->files, crypto);
+    write_folder_atomic(dir.string(), [&](const std::string& staging) {
+      write_buffer_files(staging, buffers, camera, o->files, crypto);
+    });
     std::printf("wrote %s buffers to %s\n", o->list.c_str(), o->dir.c_str());
   };
 }

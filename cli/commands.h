@@ -18,6 +18,8 @@ Action add_bake_command(CLI::App& app);
 Action add_tradeoff_command(CLI::App& app);
 Action add_compare_command(CLI::App& app);
 Action add_turntable_command(CLI::App& app);
+Action add_encode_command(CLI::App& app);
+Action add_farm_command(CLI::App& app);
 
 // Checks an output path before any work: the folder exists and the extension is allowed.
 void check_output_path(const std::string& option, const std::string& path,

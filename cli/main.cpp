@@ -9,11 +9,13 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 int main(int argc, char** argv) {
   // OpenCV's own log lines ("[ WARN:0@0.1] global ...") would break the one-line contract; its
   // failures reach sylva as exceptions and are reported from there.
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  sylva::install_interrupt_handlers();
   CLI::App app{
       "sylva: non-photorealistic illustrations of 3D plants and trees.\n"
       "Run 'sylva <command> --help' for a command's options."};
@@ -32,6 +34,8 @@ int main(int argc, char** argv) {
   reg(&sylva::cli::add_styles_command);
   reg(&sylva::cli::add_compare_command);
   reg(&sylva::cli::add_turntable_command);
+  reg(&sylva::cli::add_encode_command);
+  reg(&sylva::cli::add_farm_command);
   reg(&sylva::cli::add_bake_command);
   reg(&sylva::cli::add_tradeoff_command);
   if (argc > 1 && argv[1][0] != '-') {
@@ -68,6 +72,9 @@ int main(int argc, char** argv) {
   } catch (const sylva::InputError& e) {
     std::fprintf(stderr, "sylva: error: %s\n", e.what());
     return 2;
+  } catch (const sylva::Interrupted& e) {
+    std::fprintf(stderr, "sylva: %s; finished files are kept, nothing half-written\n", e.what());
+    return 128 + e.signal();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sylva: failed: %s\n", e.what());
     return 1;

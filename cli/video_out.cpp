@@ -15,6 +15,7 @@ struct VideoOut::Impl {
   const CodecsApi& api = codecs();
   std::string path, temp;
   void* writer = nullptr;  // a cv::VideoWriter in the plugin
+  int frames = 0;
   bool done = false;
 
   Impl() = default;
@@ -52,11 +53,16 @@ VideoOut::~VideoOut() {
 
 void VideoOut::write(const cv::Mat& bgr) {
   m_impl->api.video_write(m_impl->writer, bgr);
+  ++m_impl->frames;
 }
 
 void VideoOut::finish() {
   m_impl->close();
   std::error_code ec;
+  // FFmpeg does not report a failed write through OpenCV: a file that does not hold every
+  // frame (a full disk, a removed folder) is not put in place.
+  if (m_impl->api.video_frames(m_impl->temp) != m_impl->frames)
+    throw InputError(m_impl->path, "cannot write: the MP4 came out incomplete (is the disk full?)");
   fs::rename(m_impl->temp, m_impl->path, ec);
   if (ec) throw InputError("--output", "cannot write '" + m_impl->path + "': " + ec.message());
   m_impl->done = true;

@@ -18,6 +18,8 @@ class VideoOut {
   VideoOut(const VideoOut&) = delete;
   VideoOut& operator=(const VideoOut&) = delete;
   void write(const cv::Mat& bgr);  // 8-bit BGR, the size given
+  // Finishes the file and puts it in place; throws InputError(path, ...) when the written file
+  // does not hold every frame (nothing is left behind then).
   void finish();
 
  private:

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace sylva {
 
@@ -105,6 +106,7 @@ void Progress::draw(const std::string& what) {
 }
 
 void Progress::step(const std::string& what) {
+  check_interrupt();  // a long job stops here after SIGINT / SIGTERM (core/interrupt.h)
   ++m_done;
   m_total = std::max(m_total, m_done);
   draw(what);

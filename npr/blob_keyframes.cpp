@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -17,6 +18,16 @@ int last_keyframe(int frames, int every) {
     throw InputError("--keyframe-every", "must be at least 1, got " + std::to_string(every));
   SYLVA_CHECK(frames >= 1, "last_keyframe: no frames");
   return (frames - 1 + every - 1) / every;
+}
+
+std::vector<int> keys_owned(int begin, int end, int every, int frames) {
+  const int last = last_keyframe(frames, every);
+  SYLVA_CHECK(0 <= begin && begin < end && end <= frames, "keys_owned: bad slice");
+  std::vector<int> out;
+  for (int k = (begin + every - 1) / every;
+       k <= last && (int64_t(k) * every < end || end == frames); ++k)
+    out.push_back(k);
+  return out;
 }
 
 std::vector<int> keys_needed(int frame, int every, int frames) {

@@ -33,6 +33,12 @@ BlobSet interpolate_blob_keys(const std::map<int, std::vector<BlobOutline>>& key
 // The keyframe indices frame `frame` reads, in increasing order.
 std::vector<int> keys_needed(int frame, int every, int frames);
 
+// The keyframe indices that the slice of frames [begin, end) owns, for filling a keyframe
+// cache in parallel jobs (turntable --keyframes-only): those whose frame index * every lies in
+// the slice, and, for the slice that ends the animation (end == frames), those past the end.
+// The slices of a split own every keyframe exactly once. 0 <= begin < end <= frames.
+std::vector<int> keys_owned(int begin, int end, int every, int frames);
+
 // The keyframes of one animation, computed on demand (compute(frame) shrink-wraps that
 // frame's blobs) and optionally kept in `cache_dir` as text files key-NNNNN.txt whose first
 // line is `signature` (a description of everything the outlines depend on): a file with
@@ -43,6 +49,8 @@ class BlobKeyframes {
   BlobKeyframes(int frames, int every, Compute compute, std::string cache_dir = "",
                 std::string signature = "");
   BlobSet frame(int frame);
+  // Makes sure keyframe `index` is computed (or read) and, with a cache folder, on disk.
+  void prepare(int index) { (void)key(index); }
   int computed() const { return m_computed; }  // keyframes shrink-wrapped (not read)
   int read() const { return m_read; }          // keyframes read from the cache
 

@@ -11,7 +11,7 @@ packages=(
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
   libpng-dev libjpeg-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
   libopenexr-dev libmurmurhash-dev librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools
-  python3-openimageio python3-numpy
+  python3-openimageio python3-numpy slurm-wlm munge
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -20,7 +20,11 @@ TurntableRenderer::TurntableRenderer(const SheetScene& scene, const Style& style
                                      const TurntablePath& path, int keyframe_every,
                                      const std::string& keyframe_cache,
                                      const std::string& signature)
-    : m_scene(scene), m_base(scene.raster.camera), m_style(style), m_path(path) {
+    : m_scene(scene),
+      m_base(scene.raster.camera),
+      m_style(style),
+      m_path(path),
+      m_every(keyframe_every) {
   (void)last_keyframe(path.frames, keyframe_every);  // validates the interval
   m_blobs = style.info().builder == "blobs";
   if (!m_blobs || (keyframe_every == 1 && keyframe_cache.empty())) return;
@@ -44,6 +48,14 @@ int TurntableRenderer::keyframes_computed() const {
 
 int TurntableRenderer::keyframes_read() const {
   return m_keyframes ? m_keyframes->read() : 0;
+}
+
+int TurntableRenderer::prepare_keyframes(int begin, int end) {
+  if (!m_keyframes) return 0;
+  const std::vector<int> keys = keys_owned(begin, end, m_every, m_path.frames);
+  for (int k : keys)
+    m_keyframes->prepare(k);
+  return static_cast<int>(keys.size());
 }
 
 TurntableFrame TurntableRenderer::render(int frame, bool coherence, bool strokes) {

@@ -55,6 +55,10 @@ class TurntableRenderer {
   // gives the StrokeDrawing, and the image only with coherence.
   TurntableFrame render(int frame, bool coherence, bool strokes = false);
 
+  // Computes (or reads) the keyframes the frames [begin, end) own (keys_owned) without
+  // rendering a frame, filling the keyframe cache; returns how many. 0 when not keyframed.
+  int prepare_keyframes(int begin, int end);
+
   bool blobs() const { return m_blobs; }  // the style paints blobs
   bool keyframed() const { return m_keyframes != nullptr; }
   // Keyframes shrink-wrapped so far, and read from the cache; 0 when not keyframed.
@@ -66,6 +70,7 @@ class TurntableRenderer {
   Camera m_base;
   const Style& m_style;
   TurntablePath m_path;
+  int m_every = 1;
   bool m_blobs = false;
   std::unique_ptr<BlobKeyframes> m_keyframes;
 };

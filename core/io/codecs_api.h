@@ -14,7 +14,7 @@
 namespace sylva {
 
 // Bumped whenever CodecsApi changes; the loader refuses a plugin built for another version.
-inline constexpr int kCodecsApiVersion = 1;
+inline constexpr int kCodecsApiVersion = 2;
 
 // The name of the one symbol the plugin exports: `const CodecsApi* sylva_codecs_api()`.
 inline constexpr const char* kCodecsApiSymbol = "sylva_codecs_api";
@@ -30,6 +30,9 @@ struct CodecsApi {
   void* (*video_open)(const std::string& path, const char* codec, double fps, cv::Size size);
   void (*video_write)(void* writer, const cv::Mat& frame);
   void (*video_close)(void* writer);
+  // The number of frames a video file holds (cv::VideoCapture through FFmpeg: the container's
+  // count), or -1 when it does not open: how an MP4 cut short by a full disk is caught.
+  int (*video_frames)(const std::string& path);
 };
 
 }  // namespace sylva

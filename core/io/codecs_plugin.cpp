@@ -1,9 +1,12 @@
 // The sylva_codecs plugin (a CMake MODULE, libsylva_codecs.so): the only code that links
 // opencv_imgcodecs and opencv_videoio. Loaded on first use by core/io/codecs.cpp; see
 // core/io/codecs_api.h for why.
+#include <sched.h>
+#include <cstdint>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
+#include <vector>
 
 #include "core/io/codecs_api.h"
 
@@ -18,25 +21,81 @@ cv::Mat decode(const cv::Mat& bytes, int flags) {
   return cv::imdecode(bytes, flags);
 }
 
+// While alive, the calling thread may run on one CPU only (the first it may use), so an encoder
+// opened meanwhile counts one CPU: libx264 then encodes in one thread (OpenCV's VideoWriter has
+// no option for the thread count), whose output is a function of its input alone; with its
+// frame threads, the MP4's bytes changed under load.
+class OneCpu {
+ public:
+  OneCpu() {
+    m_pinned = sched_getaffinity(0, sizeof m_saved, &m_saved) == 0;
+    if (!m_pinned) return;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+      if (CPU_ISSET(c, &m_saved)) {
+        CPU_SET(c, &one);
+        break;
+      }
+    m_pinned = sched_setaffinity(0, sizeof one, &one) == 0;
+  }
+  ~OneCpu() {
+    if (m_pinned) sched_setaffinity(0, sizeof m_saved, &m_saved);
+  }
+  OneCpu(const OneCpu&) = delete;
+  OneCpu& operator=(const OneCpu&) = delete;
+
+ private:
+  cpu_set_t m_saved;
+  bool m_pinned = false;
+};
+
+// A writer and the buffer its frames are copied into. OpenCV hands a frame to FFmpeg's swscale
+// in place unless its end lies near a page boundary, and swscale's SIMD reads a little past the
+// end: from a frame wherever the caller's allocator put it, those bytes were whatever lay there,
+// and the MP4's bytes changed from run to run (seen with libx264 at 64x64). Every frame is
+// copied into one buffer whose rows are 32-byte aligned and which ends in 4 KiB of zeros.
+struct Video {
+  cv::VideoWriter writer;
+  std::vector<uchar> storage;
+  cv::Mat padded;
+};
+
 void* video_open(const std::string& path, const char* codec, double fps, cv::Size size) {
-  auto writer = std::make_unique<cv::VideoWriter>();
+  auto video = std::make_unique<Video>();
   const int fourcc = cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]);
-  if (!writer->open(path, cv::CAP_FFMPEG, fourcc, fps, size)) return nullptr;
-  return writer.release();
+  {
+    const OneCpu one_cpu;
+    if (!video->writer.open(path, cv::CAP_FFMPEG, fourcc, fps, size)) return nullptr;
+  }
+  const size_t step = (size_t(size.width) * 3 + 31) / 32 * 32;
+  video->storage.assign(step * size_t(size.height) + 4096 + 64, 0);
+  uchar* start = video->storage.data();
+  start += (64 - reinterpret_cast<uintptr_t>(start) % 64) % 64;
+  video->padded = cv::Mat(size, CV_8UC3, start, step);
+  return video.release();
 }
 
 void video_write(void* writer, const cv::Mat& frame) {
-  static_cast<cv::VideoWriter*>(writer)->write(frame);
+  auto* video = static_cast<Video*>(writer);
+  frame.copyTo(video->padded);  // same size and type: no reallocation
+  video->writer.write(video->padded);
 }
 
 void video_close(void* writer) {
-  auto* w = static_cast<cv::VideoWriter*>(writer);
-  w->release();
-  delete w;
+  auto* video = static_cast<Video*>(writer);
+  video->writer.release();
+  delete video;
+}
+
+int video_frames(const std::string& path) {
+  cv::VideoCapture capture;
+  if (!capture.open(path, cv::CAP_FFMPEG)) return -1;
+  return static_cast<int>(capture.get(cv::CAP_PROP_FRAME_COUNT));
 }
 
 constexpr sylva::CodecsApi kApi = {
-    sylva::kCodecsApiVersion, encode, decode, video_open, video_write, video_close};
+    sylva::kCodecsApiVersion, encode, decode, video_open, video_write, video_close, video_frames};
 
 }  // namespace
 

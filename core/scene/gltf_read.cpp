@@ -16,6 +16,7 @@
 #include "core/io/atomic_file.h"
 #include "core/scene/glb_container.h"
 #include "core/scene/gltf_accessor.h"
+#include "core/scene/gltf_limits.h"
 #include "core/scene/load.h"
 #include "core/scene/texture_decode.h"
 
@@ -407,17 +408,21 @@ Scene read_gltf(const std::string& path) {
   const bool binary = ext == ".glb";
   size_t length = 0;
   const std::string json_text = binary ? glb_json_chunk(path, bytes, length) : bytes;
+  // Depth and counts first, in one pass that builds nothing (core/scene/gltf_limits.h): before
+  // the JSON tree, and tinygltf's model, are allocated in proportion to them.
+  try {
+    check_gltf_json(path, json_text);
+  } catch (const InputError& e) {
+    throw InputError(path, one_line(std::string(e.what()).substr(path.size() + 2)));
+  }
   Json json;
   try {
-    // tinygltf converts extras recursively: deep nesting would overflow its stack.
-    json = Json::parse(json_text, [&](int depth, Json::parse_event_t, Json&) {
-      if (depth > 64) throw InputError(path, "invalid glTF: JSON nested deeper than 64 levels");
-      return true;
-    });
+    json = Json::parse(json_text);
   } catch (const Json::exception& e) {
     throw InputError(path, "invalid JSON: " + one_line(e.what()));
   }
   if (!json.is_object()) throw InputError(path, "invalid glTF: the JSON is not an object");
+  check_gltf_limits(path, json);
   if (json.contains("extensionsRequired") && json["extensionsRequired"].is_array()) {
     std::string missing;
     for (const Json& e : json["extensionsRequired"])

@@ -22,6 +22,21 @@ void expect_input_error(const std::string& args, const std::string& needle) {
       << "expected '" << needle << "' in " << r.output;
 }
 
+std::vector<std::string> listing(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string decoded_frames(const std::string& video) {
+  const RunResult r =
+      run_command("ffmpeg -v error -i " + video + " -map 0:v -f framemd5 - | grep -v '^#'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  return r.output;
+}
+
 const std::string& sampled_scene(const std::string& tag, const std::string& args) {
   static std::map<std::string, std::string> paths;  // tag -> .glb; map references stay valid
   auto it = paths.find(tag);

@@ -3,6 +3,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace sylva::test {
 
@@ -11,6 +12,13 @@ void expect_input_error(const std::string& args, const std::string& needle);
 
 // A scene written once per test program by `sylva sample ARGS -o <temp>/<tag>.glb`.
 const std::string& sampled_scene(const std::string& tag, const std::string& args);
+
+// The names in a folder, sorted.
+std::vector<std::string> listing(const std::string& dir);
+
+// ffmpeg's per-frame checksums of a video's decoded frames (a decoder nobody here wrote), one
+// line per frame; a test failure when ffmpeg fails.
+std::string decoded_frames(const std::string& video);
 
 // A small sample tree (2000 leaves, seed 3), generated once per test program.
 const std::string& small_tree();

@@ -46,6 +46,30 @@ TEST(BlobKeyframes, Schedule) {
   EXPECT_EQ(test::where_of([] { (void)last_keyframe(10, 0); }), "--keyframe-every");
 }
 
+// The slices of any split own every keyframe exactly once (a farm's keys jobs fill the cache
+// without computing a keyframe twice).
+TEST(BlobKeyframes, SlicesOwnEachKeyframeOnce) {
+  EXPECT_EQ(keys_owned(0, 6, 4, 24), (std::vector<int>{0, 1}));
+  EXPECT_EQ(keys_owned(6, 12, 4, 24), (std::vector<int>{2}));
+  EXPECT_EQ(keys_owned(18, 24, 4, 24), (std::vector<int>{5, 6}));  // 24 lies past the end
+  EXPECT_EQ(keys_owned(1, 3, 4, 24), (std::vector<int>{}));
+  for (int frames : {1, 5, 12, 24, 97})
+    for (int every : {1, 2, 5, 20})
+      for (int slices : {1, 2, 3, 7}) {
+        if (slices > frames) continue;
+        std::vector<int> owned;
+        for (int t = 0; t < slices; ++t) {
+          const std::vector<int> k =
+              keys_owned(t * frames / slices, (t + 1) * frames / slices, every, frames);
+          owned.insert(owned.end(), k.begin(), k.end());
+        }
+        std::vector<int> all(last_keyframe(frames, every) + 1);
+        for (size_t i = 0; i < all.size(); ++i)
+          all[i] = int(i);
+        EXPECT_EQ(owned, all) << frames << " frames, every " << every << ", " << slices;
+      }
+}
+
 TEST(BlobKeyframes, EveryFrameIsExactAndMotionStaysLinear) {
   const int frames = 9;
   // n = 1: every frame is its own keyframe, unchanged.

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
+#include "core/scene/gltf_limits.h"
 #include "core/scene/gltf_write.h"
 #include "core/scene/load.h"
 #include "tests/test_support.h"
@@ -89,6 +90,33 @@ void expect_input_error(const std::string& path, const std::string& needle = "")
       EXPECT_NE(what.find(needle), std::string::npos) << what;
     }
   }
+}
+
+// Counts only a hostile file has are refused on the JSON, before tinygltf allocates for them:
+// 100,000 empty meshes, a million-node list, an accessor of 2^31 elements.
+TEST(BadInput, CountLimitsBeforeAllocation) {
+  Json j = good_triangle();
+  Json meshes = Json::array();
+  for (int i = 0; i < 100000; ++i)
+    meshes.push_back({{"primitives", Json::array()}});
+  j["meshes"] = meshes;
+  expect_input_error(write_gltf(j, "meshes.gltf"), "too many meshes: 100000 (at most 65536)");
+  j = good_triangle();
+  j["nodes"] = Json::array();
+  for (int i = 0; i < (1 << 20) + 1; ++i)
+    j["nodes"].push_back(Json::object());
+  expect_input_error(write_gltf(j, "nodes.gltf"), "too many nodes");
+  j = good_triangle();
+  j["accessors"][0]["count"] = 2147483648.0;
+  expect_input_error(write_gltf(j, "count.gltf"), "accessor 0: count");
+  j = good_triangle();
+  j["accessors"][1]["count"] = -1;
+  expect_input_error(write_gltf(j, "negative.gltf"), "accessor 1: count");
+  // At the limits, the files load (65,536 meshes, of which one is drawn).
+  j = good_triangle();
+  for (int i = 1; i < int(GltfLimits::kMaxMeshes); ++i)
+    j["meshes"].push_back({{"primitives", Json::array()}});
+  EXPECT_EQ(load_scene(write_gltf(j, "limit.gltf")).triangle_count(), 1u);
 }
 
 TEST(BadInput, TemplateIsGood) {

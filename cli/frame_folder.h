@@ -1,0 +1,25 @@
+// Folders of turntable frames (frame-00000.png, ...): names, and whether a frame on disk is
+// complete. What `turntable --resume` keeps and `sylva encode` reads.
+#pragma once
+
+#include <string>
+
+namespace sylva::cli {
+
+// "frame-00012.png": the name of frame `frame` (0 .. 99999) in a frame folder.
+std::string frame_file_name(int frame, const std::string& format = "png");
+
+// "frame-NNNNN.EXT" → NNNNN; -1 for any other name.
+int frame_index_of(const std::string& name, const std::string& format = "png");
+
+// Empty when the frame file at `path` is complete; otherwise why not ("no such file", "cannot
+// decode the image: <libpng's reason>", "truncated"). A PNG is decoded whole; an SVG must end
+// with its closing tag, a PDF with %%EOF, an EXR must start with OpenEXR's magic number.
+std::string frame_problem(const std::string& path, const std::string& format);
+
+// Removes the temporary files a killed writer left for frames [begin, end) in `dir`
+// (".frame-00012.png.tmpXXXXXX", core/io/atomic_file.h); returns how many.
+int remove_stale_frame_temporaries(const std::string& dir, int begin, int end,
+                                   const std::string& format);
+
+}  // namespace sylva::cli
