@@ -5,7 +5,7 @@ ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build test demo sanitize perf golden format clean
+.PHONY: all setup build test demo sanitize fuzz perf golden format clean
 
 all: build
 
@@ -30,6 +30,10 @@ sanitize: setup
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest -L unit -LE perf --output-on-failure -j $(JOBS) --timeout 1800
 
+# The libFuzzer harnesses (clang, build-fuzz/), FUZZ_SECONDS each (default 60): tests/fuzz/.
+fuzz: setup
+	@scripts/fuzz.sh
+
 demo: build
 	@scripts/demo.sh $(BUILD)/cli/sylva out
 
@@ -44,4 +48,4 @@ format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz out

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "core/error.h"
@@ -10,6 +11,15 @@
 namespace fs = std::filesystem;
 
 namespace sylva::cli {
+namespace {
+
+// FFmpeg's first error line since the last call, as "; FFmpeg: <line>", or "".
+std::string ffmpeg_reason(const CodecsApi& api) {
+  const std::string log = api.take_log();
+  return log.empty() ? "" : "; FFmpeg: " + log.substr(0, log.find('\n'));
+}
+
+}  // namespace
 
 struct VideoOut::Impl {
   const CodecsApi& api = codecs();
@@ -40,7 +50,8 @@ VideoOut::VideoOut(const std::string& path, double fps, cv::Size size)
     m_impl->writer = m_impl->api.video_open(m_impl->temp, codec, fps, size);
     if (m_impl->writer) return;
   }
-  throw InputError("--output", "cannot open an MP4 writer for '" + path + "' (FFmpeg)");
+  throw InputError("--output", "cannot open an MP4 writer for '" + path + "' (FFmpeg)" +
+                                   ffmpeg_reason(m_impl->api));
 }
 
 VideoOut::~VideoOut() {
@@ -62,7 +73,12 @@ void VideoOut::finish() {
   // FFmpeg does not report a failed write through OpenCV: a file that does not hold every
   // frame (a full disk, a removed folder) is not put in place.
   if (m_impl->api.video_frames(m_impl->temp) != m_impl->frames)
-    throw InputError(m_impl->path, "cannot write: the MP4 came out incomplete (is the disk full?)");
+    throw InputError(m_impl->path, "cannot write: the MP4 came out incomplete (is the disk full?)" +
+                                       ffmpeg_reason(m_impl->api));
+  // Errors FFmpeg reported along a video that came out whole: one warning line.
+  if (const std::string reason = ffmpeg_reason(m_impl->api); !reason.empty())
+    std::fprintf(stderr, "sylva: warning: %s: %s\n", m_impl->path.c_str(),
+                 reason.substr(2).c_str());
   fs::rename(m_impl->temp, m_impl->path, ec);
   if (ec) throw InputError("--output", "cannot write '" + m_impl->path + "': " + ec.message());
   m_impl->done = true;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -15,6 +16,16 @@ namespace {
 std::string number_text(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// A float as the shortest of %.6g and %.9g that reads back as the same float, so what
+// value_text prints is accepted again by an open range bound.
+std::string float_text(float v) {
+  const std::string shorter = number_text(v);
+  if (std::strtof(shorter.c_str(), nullptr) == v) return shorter;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", double(v));
   return buf;
 }
 
@@ -185,7 +196,13 @@ void ParamSet::set_number(const std::string& key, double value, const std::strin
       throw InputError(where, key + " must be a whole number, got " + number_text(value));
     *m_bindings[i].i = int(value);
   } else {
-    *m_bindings[i].f = float(value);
+    // As a float: a value the double range admits may round to the open bound (1e-50 in
+    // (0, ...] becomes 0) or overflow.
+    const float f = float(value);
+    if (!std::isfinite(f) || (s.min_open && !(f > s.min)))
+      throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) +
+                                  " as a 32-bit float" + (s.unit.empty() ? "" : " " + s.unit));
+    *m_bindings[i].f = f;
   }
 }
 
@@ -260,7 +277,7 @@ std::string ParamSet::value_text(const std::string& key) const {
   const Binding& b = m_bindings[i];
   switch (m_specs[i].type) {
     case ParamType::Float:
-      return number_text(*b.f);
+      return float_text(*b.f);
     case ParamType::Int:
       return std::to_string(*b.i);
     case ParamType::Bool:

@@ -215,13 +215,18 @@ std::vector<BlobOutline> parse_blob_outlines(const std::string& text, const std:
   size_t count = 0;
   if (!(s >> word >> count) || word != "blobs" || count > 1'000'000)
     throw InputError(where, "not a blob keyframe file (expected 'blobs N')");
-  std::vector<BlobOutline> out(count);
-  for (BlobOutline& b : out) {
+  // Grown as the blobs are read, so a short file that claims many allocates little.
+  std::vector<BlobOutline> out;
+  for (size_t i = 0; i < count; ++i) {
+    BlobOutline& b = out.emplace_back();
     size_t points = 0;
     if (!(s >> b.cluster >> b.pixels >> b.min_depth >> b.opacity >> b.wrap.center.x >>
           b.wrap.center.y >> b.wrap.radius >> points) ||
         points > 4096)
       throw InputError(where, "truncated or malformed blob keyframe");
+    if (b.cluster == 0 || b.pixels < 0 || !(b.opacity >= 0.0f && b.opacity <= 1.0f) ||
+        !(b.wrap.radius >= 0.0f))
+      throw InputError(where, "blob keyframe with a value out of range");
     b.wrap.points.resize(points);
     bool finite = std::isfinite(b.min_depth) && std::isfinite(b.opacity) &&
                   std::isfinite(b.wrap.center.x) && std::isfinite(b.wrap.center.y) &&

@@ -14,7 +14,7 @@
 namespace sylva {
 
 // Bumped whenever CodecsApi changes; the loader refuses a plugin built for another version.
-inline constexpr int kCodecsApiVersion = 2;
+inline constexpr int kCodecsApiVersion = 3;
 
 // The name of the one symbol the plugin exports: `const CodecsApi* sylva_codecs_api()`.
 inline constexpr const char* kCodecsApiSymbol = "sylva_codecs_api";
@@ -33,6 +33,10 @@ struct CodecsApi {
   // The number of frames a video file holds (cv::VideoCapture through FFmpeg: the container's
   // count), or -1 when it does not open: how an MP4 cut short by a full disk is caught.
   int (*video_frames)(const std::string& path);
+  // FFmpeg's error messages since the last call, one line each ("[mp4] moov atom not found",
+  // without the context's address), and forgets them: the plugin routes FFmpeg's log here
+  // instead of stderr, so they reach the user inside Sylva's own error or warning line.
+  std::string (*take_log)();
 };
 
 }  // namespace sylva

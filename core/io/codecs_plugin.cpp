@@ -2,15 +2,50 @@
 // opencv_imgcodecs and opencv_videoio. Loaded on first use by core/io/codecs.cpp; see
 // core/io/codecs_api.h for why.
 #include <sched.h>
+
+#include <cstdarg>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <vector>
 
 #include "core/io/codecs_api.h"
 
+extern "C" {
+#include <libavutil/log.h>
+}
+
 namespace {
+
+std::mutex g_log_mutex;
+std::string g_log;  // FFmpeg's error lines not yet taken
+
+// FFmpeg's log callback: errors are kept for take_log(), everything else is dropped (OpenCV
+// leaves FFmpeg at AV_LOG_ERROR, so nothing more used to be printed either).
+void log_callback(void* context, int level, const char* format, va_list args) {
+  if (level > AV_LOG_ERROR) return;
+  char line[1024];
+  int print_prefix = 1;
+  av_log_format_line2(context, level, format, args, line, sizeof line, &print_prefix);
+  std::string text = line;
+  const size_t at = text.find(" @ 0x");  // "[mov,mp4 @ 0x55c5c9650f80] ..." -> "[mov,mp4] ..."
+  if (at != std::string::npos && text.find(']', at) != std::string::npos)
+    text.erase(at, text.find(']', at) - at);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+    text.pop_back();
+  if (text.empty()) return;
+  const std::lock_guard<std::mutex> lock(g_log_mutex);
+  g_log += text + "\n";
+}
+
+std::string take_log() {
+  const std::lock_guard<std::mutex> lock(g_log_mutex);
+  std::string out;
+  out.swap(g_log);
+  return out;
+}
 
 bool encode(const std::string& ext, const cv::Mat& image, std::vector<uchar>& bytes,
             const std::vector<int>& params) {
@@ -94,11 +129,19 @@ int video_frames(const std::string& path) {
   return static_cast<int>(capture.get(cv::CAP_PROP_FRAME_COUNT));
 }
 
-constexpr sylva::CodecsApi kApi = {
-    sylva::kCodecsApiVersion, encode, decode, video_open, video_write, video_close, video_frames};
+constexpr sylva::CodecsApi kApi = {sylva::kCodecsApiVersion,
+                                   encode,
+                                   decode,
+                                   video_open,
+                                   video_write,
+                                   video_close,
+                                   video_frames,
+                                   take_log};
 
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) const sylva::CodecsApi* sylva_codecs_api() {
+  static std::once_flag routed;
+  std::call_once(routed, [] { av_log_set_callback(log_callback); });
   return &kApi;
 }

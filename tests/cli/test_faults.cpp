@@ -111,6 +111,21 @@ TEST(Faults, FramesCutShortByAFullDiskResumeIdentically) {
     EXPECT_EQ(read_file(dir + "/resumed/" + name), read_file(dir + "/one/" + name)) << name;
 }
 
+// `sylva encode` onto a full disk: FFmpeg's own complaint (it finds no index in the cut MP4)
+// comes out inside the one error line, not as a line of its own, and no temporary is left.
+TEST(Faults, AnMp4OnAFullDiskCarriesFfmpegsReasonInTheOneLine) {
+  FullDisk disk;
+  ASSERT_TRUE(disk.mounted()) << "mounting a tmpfs needs root";
+  const std::string frames = temp_dir("full-disk-encode") + "/frames/";
+  ASSERT_EQ(
+      run_sylva("turntable " + small_tree() + " --frames 6 --size 128 -q -o " + frames).status, 0);
+  const RunResult r = run_sylva("encode " + frames + " -q -o " + disk.dir() + "/t.mp4");
+  expect_disk_full("encode " + frames + " -q -o " + disk.dir() + "/t.mp4");
+  EXPECT_NE(r.output.find("; FFmpeg: [mov,mp4"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\n["), std::string::npos) << r.output;
+  EXPECT_EQ(disk.left(), std::vector<std::string>{});
+}
+
 // Runs `sylva ARGS` in the background, sends `signal` once its output holds `marker` (or, when
 // the marker is empty, once the process has installed its SIGINT and SIGTERM handlers: bits 1
 // and 14 of SigCgt in /proc/PID/status), and returns its exit status and output.

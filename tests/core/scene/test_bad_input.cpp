@@ -355,5 +355,48 @@ TEST(BadInput, ByteFlipsOfSmallGlb) {
   EXPECT_GT(errors, 0u);
 }
 
+// Found by the fuzzer (tests/fuzz/regressions/): a PLY header line OpenMesh loops forever on is
+// refused first; an OBJ face with a bad vertex index and texture coordinates, and OFF colours
+// far outside [0, 1], load without writing past OpenMesh's arrays or casting out of range (the
+// sanitizer build checks those).
+TEST(BadInput, HostileMeshFilesFoundByTheFuzzer) {
+  const std::string dir = test::temp_dir("openmesh-fuzz");
+  test::write_file(dir + "/header.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "prproperty float z\nproperty uindices\nend_header\n1 2\n");
+  expect_input_error(dir + "/header.ply", "not a PLY header line (line 6): 'prproperty float z'");
+  test::write_file(dir + "/texcoord.obj",
+                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                   "f 1/1 2/2 3/3\nf 1/1 2/2 7/3\n");
+  EXPECT_EQ(load_scene(dir + "/texcoord.obj").triangle_count(), 1u);
+  test::write_file(dir + "/colour.off",
+                   "COFF\n3 1 0\n0 0 0 -25.9 1e30 0.5\n1 0 0 0.5 0.5 0.5\n"
+                   "0 1 0 0.2 0.3 0.4\n3 0 1 2\n");
+  const Scene off = load_scene(dir + "/colour.off");
+  for (const glm::vec4& c : off.meshes[0].colors)
+    for (int k = 0; k < 4; ++k)
+      EXPECT_TRUE(c[k] >= 0.0f && c[k] <= 1.0f) << c[k];
+}
+
+// OpenMesh's readers print to std::cerr and std::clog; their messages must come out only in
+// the one error line, or as one warning of a scene that loads.
+TEST(BadInput, OpenMeshMessagesGoIntoTheErrorOrAWarning) {
+  const std::string dir = test::temp_dir("openmesh");
+  test::write_file(dir + "/dim.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n");
+  test::write_file(dir + "/index.obj", "v 1 2 3\nf 1 2 9\n");
+  test::write_file(dir + "/some.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+  testing::internal::CaptureStderr();
+  expect_input_error(dir + "/dim.ply", "OpenMesh: [PLYReader] : Only vertex dimension 3");
+  expect_input_error(dir + "/index.obj", "no faces: OpenMesh: ImporterT: Face contains invalid");
+  const Scene scene = load_scene(dir + "/some.obj");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  ASSERT_EQ(scene.report.warnings.size(), 1u);
+  EXPECT_NE(scene.report.warnings[0].find("OpenMesh: ImporterT: Face contains invalid"),
+            std::string::npos)
+      << scene.report.warnings[0];
+  EXPECT_EQ(scene.triangle_count(), 1u);
+}
+
 }  // namespace
 }  // namespace sylva
