@@ -21,10 +21,13 @@ build: setup $(BUILD)/build.ninja
 test: build
 	cd $(BUILD) && ctest -LE perf --output-on-failure -j $(JOBS) --timeout 900
 
-# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (no benchmarks).
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (no benchmarks), built with
+# clang at -O1 with line tables only: half the build time of GCC's -O2 -g, the same checks.
 sanitize: setup
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSYLVA_SANITIZE=ON \
-	  -DSYLVA_BUILD_PERF=OFF
+	  -DSYLVA_BUILD_PERF=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" \
+	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only"
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -250,7 +250,7 @@ Action add_tradeoff_command(CLI::App& app) {
     try {
       validate_foliage_study(so);
     } catch (const InputError& e) {
-      throw InputError("--" + e.where(), std::string(e.what()).substr(e.where().size() + 2));
+      throw InputError("--" + e.where(), e.reason());
     }
 
     const Scene scene = load_scene_for_cli(o->scene);

@@ -104,7 +104,7 @@ class FrameSink {
 // The --report CSV: a row per frame with its time and its coherence against the previous one.
 class CoherenceReport {
  public:
-  explicit CoherenceReport(bool blobs) : m_blobs(blobs) {
+  explicit CoherenceReport(bool blobs) {
     m_csv << "frame,seconds,flicker,reprojection_error,line_pop" << (blobs ? ",jitter" : "")
           << "\n";
   }
@@ -129,7 +129,6 @@ class CoherenceReport {
   std::string text() const { return m_csv.str(); }
 
  private:
-  bool m_blobs;
   std::ostringstream m_csv;
   TurntableFrame m_previous;
 };

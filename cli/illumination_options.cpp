@@ -107,7 +107,7 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
   try {
     validate_ambient(p.ambient);
   } catch (const InputError& e) {
-    throw InputError("--" + e.where(), std::string(e.what()).substr(e.where().size() + 2));
+    throw InputError("--" + e.where(), e.reason());
   }
   if (o.ka_encoding == "length") {
     s.encoding = KaEncoding::Length;

@@ -83,7 +83,7 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
     validate_ao_study(so);
   } catch (const InputError& e) {
     const std::string where = e.where().starts_with("ao.") ? e.where() : "--" + e.where();
-    throw InputError(where, std::string(e.what()).substr(e.where().size() + 2));
+    throw InputError(where, e.reason());
   }
 
   Scene scene = load_scene_for_cli(scene_options);

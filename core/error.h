@@ -12,11 +12,15 @@ namespace sylva {
 class InputError : public std::runtime_error {
  public:
   InputError(std::string where, const std::string& what)
-      : std::runtime_error(where.empty() ? what : where + ": " + what), m_where(std::move(where)) {}
+      : std::runtime_error(where.empty() ? what : where + ": " + what),
+        m_where(std::move(where)),
+        m_reason(what) {}
   const std::string& where() const { return m_where; }
+  const std::string& reason() const { return m_reason; }  // what() without "where: "
 
  private:
   std::string m_where;
+  std::string m_reason;
 };
 
 [[noreturn]] void check_failed(const char* expr, const char* file, int line,

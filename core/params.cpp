@@ -177,7 +177,6 @@ const ParamSpec& ParamSet::spec(const std::string& key, const std::string& where
 void ParamSet::set_number(const std::string& key, double value, const std::string& where) {
   const size_t i = index(key, where);
   const ParamSpec& s = m_specs[i];
-  const std::string name = where + ": " + key;
   if (s.type == ParamType::Text) {
     set_text(key, number_text(value), where);
     return;
@@ -187,10 +186,12 @@ void ParamSet::set_number(const std::string& key, double value, const std::strin
                                 (s.type == ParamType::Bool ? std::string("true or false")
                                                            : std::string("a text value")) +
                                 ", got the number " + number_text(value));
-  const bool below = s.min_open ? !(value > s.min) : !(value >= s.min);
-  if (!std::isfinite(value) || below || value > s.max)
-    throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) +
+  const auto outside = [&](const char* as) {
+    throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) + as +
                                 (s.unit.empty() ? "" : " " + s.unit));
+  };
+  const bool below = s.min_open ? !(value > s.min) : !(value >= s.min);
+  if (!std::isfinite(value) || below || value > s.max) outside("");
   if (s.type == ParamType::Int) {
     if (value != std::floor(value))
       throw InputError(where, key + " must be a whole number, got " + number_text(value));
@@ -199,9 +200,7 @@ void ParamSet::set_number(const std::string& key, double value, const std::strin
     // As a float: a value the double range admits may round to the open bound (1e-50 in
     // (0, ...] becomes 0) or overflow.
     const float f = float(value);
-    if (!std::isfinite(f) || (s.min_open && !(f > s.min)))
-      throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) +
-                                  " as a 32-bit float" + (s.unit.empty() ? "" : " " + s.unit));
+    if (!std::isfinite(f) || (s.min_open && !(f > s.min))) outside(" as a 32-bit float");
     *m_bindings[i].f = f;
   }
 }

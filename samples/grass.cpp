@@ -48,7 +48,11 @@ Scene make_grass(const GrassOptions& options) {
   const float half = 0.5f * kGrassPatchSide;
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   for (size_t b = 0; b < n; ++b) {
-    const glm::vec3 root(uniform(state, -half, half), 0.0f, uniform(state, -half, half));
+    // One draw per statement: the order of a call's arguments is up to the compiler (GCC
+    // and clang differ), and the patch must be the same whichever built it.
+    // z is drawn first, as GCC ordered it before (the sample stays the same patch).
+    const float z = uniform(state, -half, half);
+    const glm::vec3 root(uniform(state, -half, half), 0.0f, z);
     const float facing = uniform(state, 0.0f, kTwoPi);
     const float height = kGrassHeight * uniform(state, kMinHeightShare, 1.0f);
     const float lean = height * uniform(state, 0.0f, kMaxLean);

@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # `make fuzz`: builds the libFuzzer harnesses (tests/fuzz/) with clang into $FUZZ_BUILD, writes
 # their seed corpora (make_seeds, from the samples and the shared trees), and runs each harness
-# for $FUZZ_SECONDS seconds, two at a time, keeping what they find in $FUZZ_BUILD/corpus/<name>
-# (a later run continues from it). Prints one line per harness: executions, executions per
+# for $FUZZ_SECONDS seconds (or, with FUZZ_RUNS, for that many inputs), two at a time, keeping
+# what they find in $FUZZ_BUILD/corpus/<name> (a later run continues from it). Prints one line per harness: executions, executions per
 # second, coverage (edges), features, corpus size. A crash, hang (> 20 s on one input), leak,
 # sanitizer report or allocation over 2 GB fails the run; its input is kept as
 # $FUZZ_BUILD/findings/<name>-crash-* (make it a regression input under tests/fuzz/regressions).
 #
 #   FUZZ_SECONDS=60 FUZZ_SEED=1 FUZZ_HARNESSES="glb texture" scripts/fuzz.sh
+#
+# A timed run depends on the machine's speed; FUZZ_RUNS=N runs exactly N inputs per harness, so
+# that the same seed on a fresh corpus gives the same run anywhere (CI uses it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${FUZZ_BUILD:-build-fuzz}
 seconds=${FUZZ_SECONDS:-60}
+runs=${FUZZ_RUNS:-}
 seed=${FUZZ_SEED:-1}  # libFuzzer's -seed: the same seed repeats the same mutations
 jobs=${FUZZ_JOBS:-$(nproc)}
 all="glb gltf obj ply off stl texture preset set options keyframes cache"
@@ -23,6 +27,9 @@ case "$seed" in
 esac
 case "$seconds" in
   '' | *[!0-9]*) echo "fuzz: FUZZ_SECONDS must be a whole number of seconds, got '$seconds'" >&2; exit 2 ;;
+esac
+case "$runs" in
+  *[!0-9]*) echo "fuzz: FUZZ_RUNS must be a whole number of inputs, got '$runs'" >&2; exit 2 ;;
 esac
 for h in $harnesses; do
   case " $all " in *" $h "*) ;; *) echo "fuzz: unknown harness '$h' (known: $all)" >&2; exit 2 ;; esac
@@ -57,9 +64,10 @@ dict_of() {
 run_one() {
   local h=$1
   mkdir -p "$build/corpus/$h" "$build/seeds/$h"
-  local extra=()
+  local extra=() limit=(-max_total_time="$seconds")
+  [ -n "$runs" ] && limit=(-runs="$runs")
   [ -d "tests/fuzz/regressions/$h" ] && extra+=("tests/fuzz/regressions/$h")
-  "$build/tests/fuzz/fuzz_$h" -max_total_time="$seconds" -seed="$seed" -timeout=20 -rss_limit_mb=2048 \
+  "$build/tests/fuzz/fuzz_$h" "${limit[@]}" -seed="$seed" -timeout=20 -rss_limit_mb=2048 \
     -malloc_limit_mb=2048 -print_final_stats=1 -dict="$(dict_of "$h")" \
     -artifact_prefix="$build/findings/$h-" "$build/corpus/$h" "$build/seeds/$h" "${extra[@]}" \
     >"$build/logs/$h.log" 2>&1

@@ -48,7 +48,8 @@ class ByteWriter {
   void put(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     put(uint64_t(v.size()));
-    m_bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty())  // an empty vector's data() may be null, which append must not be given
+      m_bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   std::string take() { return std::move(m_bytes); }
 
@@ -73,6 +74,7 @@ class ByteReader {
     uint64_t n = 0;
     if (!get(n) || n > (m_bytes.size() - m_pos) / sizeof(T)) return false;
     v.resize(size_t(n));
+    if (n == 0) return true;  // memcpy must not be given an empty vector's null data()
     std::memcpy(v.data(), m_bytes.data() + m_pos, size_t(n) * sizeof(T));
     m_pos += size_t(n) * sizeof(T);
     return true;

@@ -413,7 +413,7 @@ Scene read_gltf(const std::string& path) {
   try {
     check_gltf_json(path, json_text);
   } catch (const InputError& e) {
-    throw InputError(path, one_line(std::string(e.what()).substr(path.size() + 2)));
+    throw InputError(path, one_line(e.reason()));
   }
   Json json;
   try {

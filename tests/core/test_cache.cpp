@@ -95,5 +95,22 @@ TEST(ByteReader, ShortAndOversizedArraysFail) {
   EXPECT_FALSE(r3.get(v));
 }
 
+// Found by fuzz_cache under UBSan: an empty array passed a null data() to memcpy.
+TEST(ByteReader, EmptyArraysRoundTrip) {
+  ByteWriter w;
+  w.put(std::vector<float>{});
+  w.put(uint32_t(7));
+  const std::string bytes = w.take();
+  EXPECT_EQ(bytes.size(), sizeof(uint64_t) + sizeof(uint32_t));
+  ByteReader r(bytes);
+  std::vector<float> v{1, 2};
+  ASSERT_TRUE(r.get(v));
+  EXPECT_TRUE(v.empty());
+  uint32_t after = 0;
+  ASSERT_TRUE(r.get(after));
+  EXPECT_EQ(after, 7u);
+  EXPECT_TRUE(r.done());
+}
+
 }  // namespace
 }  // namespace sylva::test

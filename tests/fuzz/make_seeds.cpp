@@ -10,8 +10,6 @@
 #if defined(__GNUC__) && !defined(__clang__)  // GCC only; clang has no such warning
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <filesystem>
 #include <fstream>
@@ -26,6 +24,7 @@
 #include "styles/presets.h"
 #include "styles/style_params.h"
 #include "tests/fuzz/fuzz_scenes.h"
+#include "tests/openmesh_copy.h"
 
 namespace fs = std::filesystem;
 using namespace sylva;
@@ -103,26 +102,10 @@ std::string as_gltf(const std::string& glb) {
   return j.dump();
 }
 
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-
 // The slice's first mesh through OpenMesh's writers: .obj, .off, .ply and .stl, binary too.
 void write_meshes(const Scene& s, const fs::path& out, const std::string& stem) {
   if (s.meshes.empty()) return;
-  const Mesh& m = s.meshes[0];
-  TriMesh tm;
-  tm.request_vertex_normals();
-  tm.request_vertex_texcoords2D();
-  tm.request_vertex_colors();
-  std::vector<TriMesh::VertexHandle> vh;
-  for (size_t v = 0; v < m.positions.size(); ++v) {
-    const glm::vec3& p = m.positions[v];
-    vh.push_back(tm.add_vertex(TriMesh::Point(p.x, p.y, p.z)));
-    tm.set_normal(vh.back(), TriMesh::Normal(m.normals[v].x, m.normals[v].y, m.normals[v].z));
-    if (!m.uvs.empty()) tm.set_texcoord2D(vh.back(), TriMesh::TexCoord2D(m.uvs[v].x, m.uvs[v].y));
-    tm.set_color(vh.back(), TriMesh::Color(uint8_t(40 + v % 200), 160, 60));
-  }
-  for (size_t k = 0; k + 2 < m.indices.size(); k += 3)
-    tm.add_face(vh[m.indices[k]], vh[m.indices[k + 1]], vh[m.indices[k + 2]]);
+  const test::TriMesh tm = test::openmesh_copy(s.meshes[0]);
   using O = OpenMesh::IO::Options;
   const struct {
     const char* dir;

@@ -355,16 +355,17 @@ TEST(BadInput, ByteFlipsOfSmallGlb) {
   EXPECT_GT(errors, 0u);
 }
 
-// Found by the fuzzer (tests/fuzz/regressions/): a PLY header line OpenMesh loops forever on is
-// refused first; an OBJ face with a bad vertex index and texture coordinates, and OFF colours
-// far outside [0, 1], load without writing past OpenMesh's arrays or casting out of range (the
-// sanitizer build checks those).
+// Found by the fuzzer in OpenMesh's readers (tests/fuzz/regressions/), which Sylva's own readers
+// replaced: a PLY header line OpenMesh looped forever on, an OBJ face with a bad vertex index
+// and texture coordinates (OpenMesh wrote past its arrays), OFF colours far outside [0, 1]
+// (OpenMesh cast them out of range), an OFF face claiming 2^31 vertices (OpenMesh grew a 2 GiB
+// vector), an OBJ face whose vertices are all bad (OpenMesh asserted).
 TEST(BadInput, HostileMeshFilesFoundByTheFuzzer) {
   const std::string dir = test::temp_dir("openmesh-fuzz");
   test::write_file(dir + "/header.ply",
                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                    "prproperty float z\nproperty uindices\nend_header\n1 2\n");
-  expect_input_error(dir + "/header.ply", "not a PLY header line (line 6): 'prproperty float z'");
+  expect_input_error(dir + "/header.ply", "line 6: not a PLY header line: 'prproperty'");
   test::write_file(dir + "/texcoord.obj",
                    "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                    "f 1/1 2/2 3/3\nf 1/1 2/2 7/3\n");
@@ -376,23 +377,30 @@ TEST(BadInput, HostileMeshFilesFoundByTheFuzzer) {
   for (const glm::vec4& c : off.meshes[0].colors)
     for (int k = 0; k < 4; ++k)
       EXPECT_TRUE(c[k] >= 0.0f && c[k] <= 1.0f) << c[k];
+  test::write_file(dir + "/count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2147483647 0 1 2\n");
+  expect_input_error(dir + "/count.off", "line 6: expected a face's vertex count");
+  test::write_file(dir + "/allbad.obj", "v 0 0 0\nf 0 -7 x\nf 5 6 7\n");
+  expect_input_error(dir + "/allbad.obj", "");
 }
 
-// OpenMesh's readers print to std::cerr and std::clog; their messages must come out only in
-// the one error line, or as one warning of a scene that loads.
-TEST(BadInput, OpenMeshMessagesGoIntoTheErrorOrAWarning) {
-  const std::string dir = test::temp_dir("openmesh");
+// A reader's complaints come out only in the one error line, or as one warning of a scene that
+// loads (OpenMesh's readers printed them to std::cerr and std::clog).
+TEST(BadInput, ReaderMessagesGoIntoTheErrorOrAWarning) {
+  const std::string dir = test::temp_dir("reader-messages");
   test::write_file(dir + "/dim.ply",
                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n");
   test::write_file(dir + "/index.obj", "v 1 2 3\nf 1 2 9\n");
   test::write_file(dir + "/some.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
   testing::internal::CaptureStderr();
-  expect_input_error(dir + "/dim.ply", "OpenMesh: [PLYReader] : Only vertex dimension 3");
-  expect_input_error(dir + "/index.obj", "no faces: OpenMesh: ImporterT: Face contains invalid");
+  expect_input_error(dir + "/dim.ply", "the vertex element has no x, y and z properties");
+  expect_input_error(dir + "/index.obj",
+                     "no faces (face 1: the face has vertex index 2 out of range (1 vertices))");
   const Scene scene = load_scene(dir + "/some.obj");
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
-  ASSERT_EQ(scene.report.warnings.size(), 1u);
-  EXPECT_NE(scene.report.warnings[0].find("OpenMesh: ImporterT: Face contains invalid"),
+  ASSERT_EQ(scene.report.warnings.size(), 1u) << scene.report.warnings[1];
+  EXPECT_NE(scene.report.warnings[0].find(
+                "skipped 1 face(s) that cannot be drawn, the first at face 2: the face has vertex "
+                "index 9 out of range (3 vertices)"),
             std::string::npos)
       << scene.report.warnings[0];
   EXPECT_EQ(scene.triangle_count(), 1u);

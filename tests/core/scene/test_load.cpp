@@ -1,5 +1,5 @@
 // Loading real and small scenes: the shared fern, in-memory scenes through finish_scene,
-// foliage rules, primitive ids, degenerate triangles, and the OpenMesh formats.
+// foliage rules, primitive ids, degenerate triangles, and the polygon mesh formats.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -228,7 +228,7 @@ TEST(FinishScene, KeepRoles) {
   EXPECT_EQ(s.meshes[0].roles[0], Role::Ground);
 }
 
-// A unit cube in the four OpenMesh formats, written by hand.
+// A unit cube in the four polygon mesh formats, written by hand.
 const char* kCubeObj =
     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
     "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
@@ -281,10 +281,14 @@ TEST(LoadMeshFiles, CubeInEveryFormat) {
   }
 }
 
-TEST(LoadMeshFiles, NanVertexIsAnError) {
+// tinyobjloader reads a word that is not a number ("nan") as 0; a number too large for a float
+// becomes infinite, which is an error.
+TEST(LoadMeshFiles, InfiniteVertexIsAnError) {
   const std::string path = test::temp_dir("nan") + "/bad.obj";
-  test::write_file(path, "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  test::write_file(path, "v 0 0 0\nv 1 0 0\nv 1e39 1 0\nf 1 2 3\n");
   EXPECT_THROW(load_scene(path), InputError);
+  test::write_file(path, "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  EXPECT_EQ(load_scene(path).meshes[0].positions[2], glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
 }  // namespace
