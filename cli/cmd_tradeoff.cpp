@@ -5,9 +5,9 @@
 // sylva tradeoff SCENE --study ao ... (cli/tradeoff_ao.cpp)
 // sylva tradeoff SCENE --study keyframes ... (cli/tradeoff_keyframes.cpp)
 // Measures a speed/accuracy trade against a reference the program computes itself
-// (DESIGN.md §5): the Luft et al. foliage preprocessing (npr/foliage_study.h), the
-// ambient-occlusion models (npr/ao_study.h) or the keyframe interval of blob turntables
-// (styles/keyframe_study.h).
+// (DESIGN.md §5): the Luft et al. foliage preprocessing (studies/foliage_study.h), the
+// ambient-occlusion models (studies/ao_study.h) or the keyframe interval of blob turntables
+// (studies/keyframe_study.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +24,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
 #include "core/progress.h"
-#include "npr/foliage_study.h"
+#include "studies/foliage_study.h"
 
 namespace sylva::cli {
 

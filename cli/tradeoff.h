@@ -1,6 +1,6 @@
 // What the studies of `sylva tradeoff` share (cli/cmd_tradeoff.cpp): list parsing, the
-// ambient-occlusion study's options and run (cli/tradeoff_ao.cpp; npr/ao_study.h) and the
-// keyframes study's (cli/tradeoff_keyframes.cpp; styles/keyframe_study.h).
+// ambient-occlusion study's options and run (cli/tradeoff_ao.cpp; studies/ao_study.h) and the
+// keyframes study's (cli/tradeoff_keyframes.cpp; studies/keyframe_study.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -108,7 +108,7 @@ struct CoherenceStudyCliOptions {
 void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o);
 
 // `sylva tradeoff SCENE --study coherence`: every style of --styles on --frames views --step
-// degrees apart (styles/coherence_study.h), CSV (and plot) written atomically, table printed.
+// degrees apart (studies/coherence_study.h), CSV (and plot) written atomically, table printed.
 // `frames` is the keyframes study's --frames when given, else 12.
 void run_coherence_study_command(const SceneOptions& scene, const CoherenceStudyCliOptions& o,
                                  const KeyframeStudyCliOptions& path, bool frames_given,

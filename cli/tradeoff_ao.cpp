@@ -1,7 +1,7 @@
 // sylva tradeoff SCENE --study ao -o AO.csv [--plot AO.png] [--models LIST] [--shells LIST]
 //   [--rays LIST] [--reference-rays N] [--repeats N] [view options] [--style S] [--set ...]
 // The AO models' error against ray-traced visibility and the time they add to a frame
-// (npr/ao_study.h).
+// (studies/ao_study.h).
 #include <cstdio>
 #include <filesystem>
 
@@ -9,7 +9,7 @@
 #include "cli/tradeoff.h"
 #include "core/gl/depth_range.h"
 #include "core/progress.h"
-#include "npr/ao_study.h"
+#include "studies/ao_study.h"
 
 namespace sylva::cli {
 

@@ -1,7 +1,7 @@
 // sylva tradeoff SCENE --study coherence -o C.csv [--plot C.png] [--styles a,b,...]
 //   [--frames N] [--step DEG] [--axis y] [--zoom Z] [view options] [--set ...]
 // Reprojection error and line pop of each style over views a few degrees apart, against the
-// time per frame (styles/coherence_study.h).
+// time per frame (studies/coherence_study.h).
 #include <cstdio>
 #include <filesystem>
 
@@ -10,7 +10,7 @@
 #include "cli/illumination_options.h"
 #include "cli/tradeoff.h"
 #include "core/progress.h"
-#include "styles/coherence_study.h"
+#include "studies/coherence_study.h"
 #include "styles/presets.h"
 
 namespace sylva::cli {

@@ -1,7 +1,7 @@
 // sylva tradeoff SCENE --study keyframes -o KF.csv [--plot KF.png] [--every LIST] [--frames N]
 //   [--degrees D] [--axis y] [--zoom Z] [view options] [--style blobs] [--set ...]
 // Time, flicker and outline jitter of a blobs turntable for each keyframe interval, against
-// fresh blobs every frame (styles/keyframe_study.h).
+// fresh blobs every frame (studies/keyframe_study.h).
 #include <cstdio>
 #include <filesystem>
 
@@ -9,7 +9,7 @@
 #include "cli/frame.h"
 #include "cli/tradeoff.h"
 #include "core/progress.h"
-#include "styles/keyframe_study.h"
+#include "studies/keyframe_study.h"
 
 namespace sylva::cli {
 

@@ -136,7 +136,7 @@ TurntableChecks check_turntable_options(const CLI::App& cmd, TurntableOptions& o
   }
   c.range = parse_frame_range(o.range, o.path.frames);
   c.style = resolve_style(cmd, o.style, o.sets, o.illumination);
-  c.blobs = c.style->info().builder == "blobs";
+  c.blobs = c.style->traits().blob_outlines;
   c.vector = o.frame_format == "svg" || o.frame_format == "pdf";
   check_frame_format(o, c);
   check_keyframe_options(o, c);

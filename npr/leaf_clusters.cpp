@@ -6,9 +6,9 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
+#include "core/csv.h"
 #include "core/error.h"
 #include "core/scene/load.h"
-#include "npr/study_csv.h"
 
 namespace sylva {
 namespace {

@@ -10,11 +10,13 @@
 #   FUZZ_SECONDS=60 FUZZ_SEED=1 FUZZ_HARNESSES="glb texture" scripts/fuzz.sh
 #
 # A timed run depends on the machine's speed; FUZZ_RUNS=N runs exactly N inputs per harness, so
-# that the same seed on a fresh corpus gives the same run anywhere (CI uses it).
+# that the same seed on a fresh corpus gives the same run anywhere (CI uses it). With both set,
+# a harness stops at whichever comes first (the long runs: FUZZ_RUNS=1000000 FUZZ_SECONDS=1800).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${FUZZ_BUILD:-build-fuzz}
 seconds=${FUZZ_SECONDS:-60}
+timed=${FUZZ_SECONDS:+yes}  # FUZZ_SECONDS given: it bounds a FUZZ_RUNS run too
 runs=${FUZZ_RUNS:-}
 seed=${FUZZ_SEED:-1}  # libFuzzer's -seed: the same seed repeats the same mutations
 jobs=${FUZZ_JOBS:-$(nproc)}
@@ -65,9 +67,13 @@ run_one() {
   local h=$1
   mkdir -p "$build/corpus/$h" "$build/seeds/$h"
   local extra=() limit=(-max_total_time="$seconds")
-  [ -n "$runs" ] && limit=(-runs="$runs")
+  if [ -n "$runs" ]; then
+    limit=(-runs="$runs")
+    [ -n "$timed" ] && limit+=(-max_total_time="$seconds")
+  fi
   [ -d "tests/fuzz/regressions/$h" ] && extra+=("tests/fuzz/regressions/$h")
-  "$build/tests/fuzz/fuzz_$h" "${limit[@]}" -seed="$seed" -timeout=20 -rss_limit_mb=2048 \
+  # -reload=0: one process per corpus, and the timed re-reading of it made runs differ.
+  "$build/tests/fuzz/fuzz_$h" "${limit[@]}" -seed="$seed" -reload=0 -timeout=20 -rss_limit_mb=2048 \
     -malloc_limit_mb=2048 -print_final_stats=1 -dict="$(dict_of "$h")" \
     -artifact_prefix="$build/findings/$h-" "$build/corpus/$h" "$build/seeds/$h" "${extra[@]}" \
     >"$build/logs/$h.log" 2>&1

@@ -160,14 +160,27 @@ StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
 
 const std::vector<StyleBuilder>& builder_table() {
   static const std::vector<StyleBuilder> table = {
-      {"shaded", "local illumination (Luft et al. Eq. 1) from the raster pass", &build_shaded},
-      {"ink", "strokes of the line hierarchy, abstracted to the picture's scale, over paper",
-       &build_ink, IdKind::Cluster},
-      {"toon", "cartoon shading in k bands of N.L (Decaudin)", &build_toon},
-      {"watercolor", "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
-       &build_watercolor, IdKind::Cluster},
-      {"blobs", "shrink-wrapped blob billboards per leaf cluster over the branches (Dudley)",
-       &build_blobs, IdKind::Cluster},
+      {"shaded",
+       "local illumination (Luft et al. Eq. 1) from the raster pass",
+       &build_shaded,
+       IdKind::Primitive,
+       {}},
+      {"ink",
+       "strokes of the line hierarchy, abstracted to the picture's scale, over paper",
+       &build_ink,
+       IdKind::Cluster,
+       {.coverage_alpha = true, .strokes = true}},
+      {"toon", "cartoon shading in k bands of N.L (Decaudin)", &build_toon, IdKind::Primitive, {}},
+      {"watercolor",
+       "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
+       &build_watercolor,
+       IdKind::Cluster,
+       {}},
+      {"blobs",
+       "shrink-wrapped blob billboards per leaf cluster over the branches (Dudley)",
+       &build_blobs,
+       IdKind::Cluster,
+       {.coverage_alpha = true, .blob_outlines = true}},
   };
   return table;
 }
@@ -206,11 +219,15 @@ void Style::configure(RasterRequest& request) const {
   request.id_kind = find_builder(m_info.builder, m_info.source).ids;
   // ink and blobs read the colour's alpha as coverage (the sheet keeps the view's background
   // for the style context).
-  if (m_info.builder == "ink" || m_info.builder == "blobs") request.background.a = 0.0f;
+  if (traits().coverage_alpha) request.background.a = 0.0f;
+}
+
+const BuilderTraits& Style::traits() const {
+  return find_builder(m_info.builder, m_info.source).traits;
 }
 
 bool Style::has_strokes() const {
-  return m_info.builder == "ink";
+  return traits().strokes;
 }
 
 StyleOutput Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,

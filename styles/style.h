@@ -45,12 +45,21 @@ struct StyleOutput {
   int strokes = -1;
 };
 
+// What the code around a builder needs to know of it, declared in the table instead of tested
+// by name.
+struct BuilderTraits {
+  bool coverage_alpha = false;  // reads the colour's alpha as coverage (background alpha 0)
+  bool strokes = false;         // build() gives a StrokeDrawing (lines; SVG and PDF output)
+  bool blob_outlines = false;   // draws blob outlines, which turntables can keyframe
+};
+
 struct StyleBuilder {
   std::string name;
   std::string description;
   StyleOutput (*build)(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                        const StyleContext& context);
   IdKind ids = IdKind::Primitive;  // what the id buffer holds for this builder
+  BuilderTraits traits;
 };
 
 const std::vector<StyleBuilder>& builder_table();
@@ -95,6 +104,7 @@ class Style {
   Style& operator=(const Style&) = delete;
 
   const PresetInfo& info() const { return m_info; }
+  const BuilderTraits& traits() const;  // the traits of the preset's builder
   StyleParams& params() { return m_params; }
   const StyleParams& params() const { return m_params; }
   ParamSet& set() { return m_set; }

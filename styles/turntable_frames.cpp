@@ -26,7 +26,7 @@ TurntableRenderer::TurntableRenderer(const SheetScene& scene, const Style& style
       m_path(path),
       m_every(keyframe_every) {
   (void)last_keyframe(path.frames, keyframe_every);  // validates the interval
-  m_blobs = style.info().builder == "blobs";
+  m_blobs = style.traits().blob_outlines;
   if (!m_blobs || (keyframe_every == 1 && keyframe_cache.empty())) return;
   // Keyframed blobs: outlines from their own small raster pass every n-th frame.
   const BlobParams bp = style.params().blobs;

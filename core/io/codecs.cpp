@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>  // the enums only: the functions are in the plugin
@@ -21,6 +22,21 @@ namespace sylva {
 namespace {
 
 constexpr const char* kPluginName = "libsylva_codecs.so";
+
+bool starts_with(const unsigned char* bytes, size_t size, const char* magic, size_t n) {
+  return size >= n && std::memcmp(bytes, magic, n) == 0;
+}
+
+// The formats decode_image leaves to OpenCV, by their signatures: TIFF (both byte orders), BMP,
+// WebP (a RIFF "WEBP" file), PNM (P1-P7), OpenEXR and Radiance HDR.
+bool is_plugin_format(const unsigned char* b, size_t size) {
+  return starts_with(b, size, "II*\0", 4) || starts_with(b, size, "MM\0*", 4) ||
+         starts_with(b, size, "BM", 2) ||
+         (starts_with(b, size, "RIFF", 4) && size >= 12 && std::memcmp(b + 8, "WEBP", 4) == 0) ||
+         (size >= 2 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7') ||
+         starts_with(b, size, "\x76\x2f\x31\x01", 4) || starts_with(b, size, "#?RADIANCE", 10) ||
+         starts_with(b, size, "#?RGBE", 6);
+}
 
 struct Loaded {
   const CodecsApi* api = nullptr;
@@ -81,10 +97,17 @@ const CodecsApi& codecs() {
   return *loaded.api;
 }
 
-cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report) {
+cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report) {
   if (!bytes || size == 0 || size >= size_t(1) << 31) return cv::Mat();
   if (is_png(bytes, size)) return decode_png(bytes, size, report);
   if (is_jpeg(bytes, size)) return decode_jpeg(bytes, size, report);
+  return cv::Mat();
+}
+
+cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report) {
+  if (!bytes || size == 0 || size >= size_t(1) << 31) return cv::Mat();
+  if (is_png(bytes, size) || is_jpeg(bytes, size)) return decode_png_or_jpeg(bytes, size, report);
+  if (!is_plugin_format(bytes, size)) return cv::Mat();
   const cv::Mat encoded(1, int(size), CV_8U, const_cast<unsigned char*>(bytes));
   return codecs().decode(encoded, cv::IMREAD_UNCHANGED);
 }

@@ -17,9 +17,14 @@ namespace sylva {
 const CodecsApi& codecs();
 
 // cv::imdecode(bytes, cv::IMREAD_UNCHANGED): PNG by libpng and JPEG by libjpeg in process (their
-// messages go to `report`, never to stderr), any other format by the plugin. An empty Mat when
-// the data cannot be decoded; may throw cv::Exception as imdecode does, and std::runtime_error
-// when another format needs the plugin and it does not load.
+// messages go to `report`, never to stderr); TIFF, BMP, WebP, PNM, OpenEXR and Radiance HDR,
+// known by their first bytes, by the plugin. An empty Mat when the data cannot be decoded or is
+// none of those (OpenCV would also try GDCM, whose trace prints lines of its own); may throw
+// cv::Exception as imdecode does, and std::runtime_error when the plugin does not load.
 cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
+
+// PNG or JPEG only, in process, as glTF 2.0 allows for textures: an empty Mat for any other
+// data. Never loads the plugin.
+cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report);
 
 }  // namespace sylva

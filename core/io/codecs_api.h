@@ -14,14 +14,15 @@
 namespace sylva {
 
 // Bumped whenever CodecsApi changes; the loader refuses a plugin built for another version.
-inline constexpr int kCodecsApiVersion = 3;
+inline constexpr int kCodecsApiVersion = 4;
 
 // The name of the one symbol the plugin exports: `const CodecsApi* sylva_codecs_api()`.
 inline constexpr const char* kCodecsApiSymbol = "sylva_codecs_api";
 
 struct CodecsApi {
   int version;
-  // cv::imencode and cv::imdecode, unchanged: they throw cv::Exception as OpenCV does.
+  // cv::imencode and cv::imdecode: they throw cv::Exception as OpenCV does. What imdecode's
+  // decoders print to std::cerr (OpenCV's "can't read header", GDCM's trace) is dropped.
   bool (*encode)(const std::string& ext, const cv::Mat& image, std::vector<uchar>& bytes,
                  const std::vector<int>& params);
   cv::Mat (*decode)(const cv::Mat& bytes, int flags);

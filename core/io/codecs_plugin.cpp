@@ -5,10 +5,13 @@
 
 #include <cstdarg>
 #include <cstdint>
+#include <iostream>
 #include <memory>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/io/codecs_api.h"
@@ -52,7 +55,26 @@ bool encode(const std::string& ext, const cv::Mat& image, std::vector<uchar>& by
   return cv::imencode(ext, image, bytes, params);
 }
 
+// While alive, what is written to std::cerr goes into a string that is then dropped (one at a
+// time: the stream is global). OpenCV's imdecode prints there when a decoder throws ("can't read
+// header"), and so does GDCM's trace for data that is not DICOM; the empty image says enough.
+class CerrDropped {
+ public:
+  CerrDropped() : m_lock(s_mutex), m_saved(std::cerr.rdbuf(m_text.rdbuf())) {}
+  ~CerrDropped() { std::cerr.rdbuf(m_saved); }
+  CerrDropped(const CerrDropped&) = delete;
+  CerrDropped& operator=(const CerrDropped&) = delete;
+
+ private:
+  static std::mutex s_mutex;
+  std::lock_guard<std::mutex> m_lock;
+  std::ostringstream m_text;
+  std::streambuf* m_saved;
+};
+std::mutex CerrDropped::s_mutex;
+
 cv::Mat decode(const cv::Mat& bytes, int flags) {
+  const CerrDropped quiet;
   return cv::imdecode(bytes, flags);
 }
 

@@ -88,7 +88,10 @@ cv::Mat read_image(const std::string& path) {
   } catch (const cv::Exception&) {
     img.release();
   }
-  if (img.empty()) throw InputError(path, "not a readable image");
+  if (img.empty())
+    throw InputError(path,
+                     "not a readable image (PNG, JPEG, TIFF, BMP, WebP, PNM, OpenEXR or Radiance "
+                     "HDR expected)");
   return img;
 }
 

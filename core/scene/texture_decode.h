@@ -24,7 +24,7 @@ inline Texture decode_texture(const unsigned char* bytes, size_t size, const std
   DecodeReport report;
   if (bytes && size > 0 && size < size_t(1) << 31) {
     try {
-      m = decode_image(bytes, size, &report);
+      m = decode_png_or_jpeg(bytes, size, &report);
     } catch (const cv::Exception&) {
       m = cv::Mat();
     }

@@ -1,6 +1,7 @@
 // A real tree whose embedded textures are damaged: libpng and libjpeg speak only through sylva.
 // A broken PNG is one "sylva: error:" line naming the image and libpng's reason, with nothing
-// written; a damaged but readable JPEG renders with one "sylva: warning:" line.
+// written; a damaged but readable JPEG renders with one "sylva: warning:" line; an image that is
+// neither (OpenCV would try GDCM, which prints its own lines) is one error line too.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -81,6 +82,52 @@ TEST(DamagedTextures, DamagedJpegRendersWithOneWarningLine) {
   const RunResult info = run_sylva("info " + scene + " 2>/dev/null");
   EXPECT_EQ(info.status, 0);
   EXPECT_NE(info.output.find("warning     image 0"), std::string::npos) << info.output;
+}
+
+// Bytes OpenCV would hand to GDCM (a DICOM preamble and magic), whose trace printed ten lines.
+std::string dicom_like(size_t size) {
+  std::string bytes(128, '\0');
+  bytes += "DICM";
+  while (bytes.size() < size)
+    bytes += char(bytes.size() * 37);
+  return bytes.substr(0, size);
+}
+
+TEST(DamagedTextures, ImageNeitherPngNorJpegIsOneErrorLine) {
+  const std::string dir = temp_dir("dicom-texture");
+  const std::string scene = damaged_ash(dir, 2, [](char* image, size_t size) {
+    const std::string bytes = dicom_like(size);
+    std::memcpy(image, bytes.data(), size);
+  });
+  const RunResult r = run_sylva("info " + scene);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(count_lines(r.output), 1) << r.output;
+  EXPECT_EQ(r.output.rfind("sylva: error: " + scene + ": image 2", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find("PNG or JPEG expected"), std::string::npos) << r.output;
+}
+
+// watercolor.paper takes other formats through OpenCV: what its decoders print stays inside.
+TEST(DamagedTextures, UnreadablePaperImageIsOneErrorLine) {
+  const std::string dir = temp_dir("bad-paper");
+  std::filesystem::create_directory(dir + "/out");
+  write_file(dir + "/scan.dcm", dicom_like(4096));
+  write_file(dir + "/broken.tif", std::string("II*\0\x08\0\0\0", 8) + std::string(600, '\xff'));
+  write_file(dir + "/broken.bmp", "BM" + std::string(100, '\x7f'));
+  for (const char* paper : {"scan.dcm", "broken.tif", "broken.bmp"}) {
+    const RunResult r =
+        run_sylva("render " + small_tree() + " --style watercolor --size 64 --set " +
+                  "watercolor.paper=" + dir + "/" + paper + " -o " + dir + "/out/a.png");
+    // Besides the preprocessing's report line, one line: the error.
+    std::string said;
+    std::istringstream in(r.output);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("foliage illumination: ", 0) != 0) said += line + "\n";
+    EXPECT_EQ(r.status, 2) << paper << "\n" << r.output;
+    EXPECT_EQ(count_lines(said), 1) << paper << "\n" << r.output;
+    EXPECT_EQ(said.rfind("sylva: error: ", 0), 0u) << r.output;
+    EXPECT_NE(said.find("not a readable image"), std::string::npos) << r.output;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir + "/out"));
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "npr/ao_study.h"
+#include "studies/ao_study.h"
 #include "tests/test_support.h"
 
 namespace sylva::test {

@@ -1,4 +1,4 @@
-// The foliage speed/accuracy study (npr/foliage_study.h) on a small sample tree: the
+// The foliage speed/accuracy study (studies/foliage_study.h) on a small sample tree: the
 // reference's own row has zero error, errors are finite and >= 0, fewer generators on a
 // coarser grid are worse, the attribute encoding is at least as exact inside triangles as
 // the length encoding, failed runs are recorded, determinism, option ranges, CSV and chart.
@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "npr/foliage_study.h"
 #include "samples/plants.h"
+#include "studies/foliage_study.h"
 
 namespace sylva {
 namespace {

@@ -1,6 +1,5 @@
-// What the trade-off studies' CSV tables (npr/ao_study.h, npr/foliage_study.h) share: a number
-// printed with a printf format (npr/leaf_clusters.cpp's report uses it too), and a text field
-// quoted as RFC 4180 asks. Header-only.
+// What the CSV tables (the trade-off studies in studies/, npr/leaf_clusters.cpp's report) share:
+// a number printed with a printf format, and a text field quoted as RFC 4180 asks. Header-only.
 #pragma once
 
 #include <cstdio>

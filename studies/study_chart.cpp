@@ -1,4 +1,4 @@
-#include "npr/study_chart.h"
+#include "studies/study_chart.h"
 
 #include <algorithm>
 #include <cmath>

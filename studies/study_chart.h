@@ -1,5 +1,5 @@
-// The charts of the trade-off studies (npr/foliage_study.h, npr/ao_study.h): error against
-// time on a log-scale x axis, one panel per error measure, drawn with OpenCV's imgproc
+// The charts of the trade-off studies (studies/*_study.h): error against time on a log-scale
+// x axis, one panel per error measure, drawn with OpenCV's imgproc
 // (Debian's OpenCV has no plot module linked here). Each study lays out its own title,
 // panels and legend with these pieces, so the charts look alike.
 #pragma once

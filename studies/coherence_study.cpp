@@ -1,4 +1,4 @@
-#include "styles/coherence_study.h"
+#include "studies/coherence_study.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "npr/study_chart.h"
+#include "studies/study_chart.h"
 #include "styles/reprojection.h"
 #include "styles/turntable_frames.h"
 

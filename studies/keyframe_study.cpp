@@ -1,4 +1,4 @@
-#include "styles/keyframe_study.h"
+#include "studies/keyframe_study.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "npr/study_chart.h"
+#include "studies/study_chart.h"
 #include "styles/turntable_frames.h"
 
 namespace sylva {
@@ -22,7 +22,7 @@ void validate_keyframe_study(const KeyframeStudyOptions& options, const Style& s
       throw InputError("--every", std::to_string(n) + " is outside [1, 100000]");
     if (!seen.insert(n).second) throw InputError("--every", std::to_string(n) + " is listed twice");
   }
-  if (style.info().builder != "blobs")
+  if (!style.traits().blob_outlines)
     throw InputError("--style", "the keyframes study needs a blobs style (style '" +
                                     style.info().name + "' draws every frame afresh)");
 }

@@ -1,4 +1,4 @@
-#include "npr/foliage_study.h"
+#include "studies/foliage_study.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "core/csv.h"
 #include "core/error.h"
 #include "npr/generators.h"
-#include "npr/study_chart.h"
-#include "npr/study_csv.h"
+#include "studies/study_chart.h"
 
 namespace sylva {
 
@@ -240,7 +240,7 @@ std::string foliage_study_csv(const FoliageStudy& study) {
 }
 
 // ---------------------------------------------------------------------------------------
-// The chart (npr/study_chart.h).
+// The chart (studies/study_chart.h).
 
 namespace {
 
