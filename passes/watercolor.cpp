@@ -36,10 +36,8 @@ using watercolor_internal::to_linear;
 // Paper relief shading of the bare paper at paper_strength 1 (light grazing the grain).
 constexpr float kPaperRelief = 0.10f;
 
-}  // namespace
-
-cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
-                   const WatercolorParams& p) {
+// Checks the buffers the parameters need; true when the pigment is the albedo.
+bool check_inputs(const WatercolorImages& in, const WatercolorParams& p) {
   expect_image(in.id, CV_32SC1, cv::Size(), "id");
   const cv::Size size = in.id.size();
   expect_image(in.color, CV_8UC4, size, "color");
@@ -52,13 +50,14 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
                        "(use \"shaded\")");
     expect_image(in.albedo, CV_8UC4, size, "albedo");
   }
-  const bool turbulence = p.turbulence_strength > 0.0f;
-  if (turbulence) expect_image(in.position, CV_32FC3, size, "position");
-  const SrgbTables& srgb = srgb_tables();
-  const double scale = reference_scale(size);
+  if (p.turbulence_strength > 0.0f) expect_image(in.position, CV_32FC3, size, "position");
+  return use_albedo;
+}
 
+// The edge and blur settings every layer shares, in pixels of this image.
+Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, double scale) {
   Shared s;
-  s.size = size;
+  s.size = in.id.size();
   s.depth = in.depth;
   s.sigma = float(p.blur * scale);
   // A hard edge still spans about a pixel of the blurred mask's slope, so it is antialiased.
@@ -67,12 +66,41 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
   // Pigment pools where a wash dries against dry paper; a wet-on-wet edge diffuses instead.
   s.edge_gain = p.edge_darkening * (1.0f - 0.8f * p.edge_softness);
   s.detail = p.detail;
-  s.srgb = &srgb;
+  s.srgb = &srgb_tables();
+  return s;
+}
 
-  // Clusters: statistics in one pass, labels in first-appearance order.
+// Pixel (x, y) of cluster `L` added to its sums; returns the pixel's display luminance.
+float add_pixel(Layer& L, int x, int y, const cv::Vec4b& col, const cv::Vec4b* alb, float depth,
+                const SrgbTables& srgb) {
+  ++L.count;
+  L.x0 = std::min(L.x0, x);
+  L.x1 = std::max(L.x1, x);
+  L.y1 = y;
+  const float a = float(col[3]) / 255.0f;
+  cv::Vec3f c(srgb.to_linear[col[0]], srgb.to_linear[col[1]], srgb.to_linear[col[2]]);
+  for (int ch = 0; ch < 3; ++ch)
+    L.sum_color[ch] += c[ch];
+  L.sum_alpha += a;
+  if (alb) {
+    for (int ch = 0; ch < 3; ++ch)
+      L.sum_pigment[ch] += srgb.to_linear[(*alb)[ch]];
+    L.sum_pigment_alpha += float((*alb)[3]) / 255.0f;
+  }
+  const double z = depth;
+  L.sum_depth += z;
+  L.sum_depth2 += z * z;
+  return a > 0.0f ? to_display(srgb, luminance(c / a)) : 0.0f;
+}
+
+// Clusters: statistics in one pass, labels (into `first_label`) in first-appearance order;
+// fills s.luminance.
+std::vector<Layer> gather_layers(const WatercolorImages& in, bool use_albedo, Shared& s,
+                                 cv::Mat& first_label) {
+  const cv::Size size = s.size;
   std::vector<Layer> layers;
   std::unordered_map<int32_t, int> index_of;
-  cv::Mat first_label(size, CV_32S);
+  first_label.create(size, CV_32S);
   s.luminance.create(size, CV_32F);
   for (int y = 0; y < size.height; ++y) {
     const int32_t* id = in.id.ptr<int32_t>(y);
@@ -94,36 +122,22 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
         if (added) {
           layers.emplace_back();
           layers.back().id = id[x];
-          layers.back().x0 = x;
-          layers.back().y0 = y;
-          layers.back().x1 = x;
-          layers.back().y1 = y;
+          layers.back().x0 = layers.back().x1 = x;
+          layers.back().y0 = layers.back().y1 = y;
         }
         last_id = id[x];
         last = it->second;
       }
       lab[x] = last;
-      Layer& L = layers[size_t(last)];
-      ++L.count;
-      L.x0 = std::min(L.x0, x);
-      L.x1 = std::max(L.x1, x);
-      L.y1 = y;
-      const float a = float(col[x][3]) / 255.0f;
-      cv::Vec3f c(srgb.to_linear[col[x][0]], srgb.to_linear[col[x][1]], srgb.to_linear[col[x][2]]);
-      for (int ch = 0; ch < 3; ++ch)
-        L.sum_color[ch] += c[ch];
-      L.sum_alpha += a;
-      if (alb) {
-        for (int ch = 0; ch < 3; ++ch)
-          L.sum_pigment[ch] += srgb.to_linear[alb[x][ch]];
-        L.sum_pigment_alpha += float(alb[x][3]) / 255.0f;
-      }
-      const double z = dep[x];
-      L.sum_depth += z;
-      L.sum_depth2 += z * z;
-      lum[x] = a > 0.0f ? to_display(srgb, luminance(c / a)) : 0.0f;
+      lum[x] =
+          add_pixel(layers[size_t(last)], x, y, col[x], alb ? &alb[x] : nullptr, dep[x], *s.srgb);
     }
   }
+  return layers;
+}
+
+// Each layer's means from its sums: depth and spread, colour, luminance and pigment.
+void finish_layers(std::vector<Layer>& layers, bool use_albedo, const SrgbTables& srgb) {
   for (Layer& L : layers) {
     const double n = double(L.count);
     L.mean_depth = float(L.sum_depth / n);
@@ -145,7 +159,12 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
       L.pigment_display[ch] = to_display(srgb, L.pigment[ch]);
     }
   }
-  // Back to front by mean depth (ties by id), so layer k is hidden only by layers > k.
+}
+
+// The layers back to front by mean depth (ties by id), so layer k is hidden only by layers > k;
+// s.label holds each pixel's rank.
+std::vector<Layer> back_to_front(const std::vector<Layer>& layers, const cv::Mat& first_label,
+                                 Shared& s) {
   std::vector<int> order(layers.size());
   for (size_t i = 0; i < order.size(); ++i)
     order[i] = int(i);
@@ -158,90 +177,101 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
   std::vector<int> rank(layers.size());
   for (size_t r = 0; r < order.size(); ++r)
     rank[size_t(order[r])] = int(r);
-  s.label.create(size, CV_32S);
-  for (int y = 0; y < size.height; ++y) {
+  s.label.create(s.size, CV_32S);
+  for (int y = 0; y < s.size.height; ++y) {
     const int32_t* a = first_label.ptr<int32_t>(y);
     int32_t* b = s.label.ptr<int32_t>(y);
-    for (int x = 0; x < size.width; ++x)
+    for (int x = 0; x < s.size.width; ++x)
       b[x] = a[x] < 0 ? -1 : rank[size_t(a[x])];
   }
   std::vector<Layer> sorted(layers.size());
   for (size_t r = 0; r < order.size(); ++r)
     sorted[r] = layers[size_t(order[r])];
+  return sorted;
+}
 
-  const bool wobble = p.wobble > 0.0f && !sorted.empty();
-  Paper paper_maps = watercolor_internal::make_paper(size, p, wobble);
-  const cv::Mat paper = paper_maps.relief;
-  if (wobble) {
-    // The gradient of the smoothed paper, scaled to an RMS length of `wobble` px.
-    s.wobble_x = paper_maps.gx;
-    s.wobble_y = paper_maps.gy;
-    const double rms = std::sqrt(
-        (cv::sum(s.wobble_x.mul(s.wobble_x))[0] + cv::sum(s.wobble_y.mul(s.wobble_y))[0]) /
-        double(size.area()));
-    const double target = p.wobble * scale;
-    const double k = rms > 1e-12 ? target / rms : 0.0;
-    const double limit = 3.0 * target;
-    s.wobble_x.convertTo(s.wobble_x, CV_32F, k);
-    s.wobble_y.convertTo(s.wobble_y, CV_32F, k);
-    cv::min(cv::max(s.wobble_x, -limit), limit, s.wobble_x);
-    cv::min(cv::max(s.wobble_y, -limit), limit, s.wobble_y);
-    s.max_wobble = float(limit);
-  }
+// The wobble displacement: the gradient of the smoothed paper, scaled to an RMS length of
+// `wobble` px and bounded by three times that.
+void set_wobble(const Paper& paper, const WatercolorParams& p, double scale, Shared& s) {
+  s.wobble_x = paper.gx;
+  s.wobble_y = paper.gy;
+  const double rms =
+      std::sqrt((cv::sum(s.wobble_x.mul(s.wobble_x))[0] + cv::sum(s.wobble_y.mul(s.wobble_y))[0]) /
+                double(s.size.area()));
+  const double target = p.wobble * scale;
+  const double k = rms > 1e-12 ? target / rms : 0.0;
+  const double limit = 3.0 * target;
+  s.wobble_x.convertTo(s.wobble_x, CV_32F, k);
+  s.wobble_y.convertTo(s.wobble_y, CV_32F, k);
+  cv::min(cv::max(s.wobble_x, -limit), limit, s.wobble_x);
+  cv::min(cv::max(s.wobble_y, -limit), limit, s.wobble_y);
+  s.max_wobble = float(limit);
+}
 
+// Every layer painted, then glazed: the densities of transparent washes add (their
+// transmittances multiply), back to front (a fixed order keeps the bytes fixed).
+cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted) {
   std::vector<LayerOut> painted(sorted.size());
   cv::parallel_for_(cv::Range(0, int(sorted.size())), [&](const cv::Range& r) {
     for (int k = r.start; k < r.end; ++k)
       painted[size_t(k)] = paint_layer(s, sorted[size_t(k)], k);
   });
-  // Glazing: the densities of transparent washes add (their transmittances multiply), back to
-  // front (a fixed order keeps the bytes fixed).
-  cv::Mat density(size, CV_32FC3, cv::Scalar(0, 0, 0));
+  cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
   for (const LayerOut& L : painted) {
     cv::Mat dst = density(L.roi);
     cv::add(dst, L.density, dst);
   }
+  return density;
+}
 
-  cv::Mat turb;
-  if (turbulence && !sorted.empty()) {
-    // Evaluated at half resolution (the noise is low-frequency): each half-size pixel takes
-    // the mean position of its covered pixels, which is the same world point whichever way
-    // the view turns (the mean commutes with the rigid view_to_world).
-    cv::Mat cover, cover3, half_cover, half_pos;
-    cv::threshold(in.depth, cover, 0.0, 1.0, cv::THRESH_BINARY);
-    cv::merge(std::vector<cv::Mat>{cover, cover, cover}, cover3);
-    const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
-    cv::resize(cover, half_cover, half, 0, 0, cv::INTER_AREA);
-    cv::resize(in.position.mul(cover3), half_pos, half, 0, 0, cv::INTER_AREA);
-    for (int y = 0; y < half.height; ++y) {
-      const float* c = half_cover.ptr<float>(y);
-      cv::Vec3f* q = half_pos.ptr<cv::Vec3f>(y);
-      for (int x = 0; x < half.width; ++x)
-        q[x] = c[x] > 0.0f ? q[x] / c[x] : cv::Vec3f(0, 0, 0);
-    }
-    cv::Mat half_turb = watercolor_turbulence(half_pos, half_cover, view_to_world, p);
-    // Pigment that bled past the silhouette takes the turbulence of the nearest surface
-    // (normalised convolution).
-    const float fill_sigma = std::max(2.0f, s.sigma / 2.0f);
-    const cv::Mat ws = blur(half_turb.mul(half_cover), fill_sigma);
-    const cv::Mat cs = blur(half_cover, fill_sigma);
-    cv::Mat filled;
-    cv::divide(ws, cv::max(cs, 1e-6), filled);
-    filled.copyTo(half_turb, half_cover == 0.0f);
-    cv::resize(half_turb, turb, size, 0, 0, cv::INTER_LINEAR);
+// The world-space turbulence texture over the image. Evaluated at half resolution (the noise is
+// low-frequency): each half-size pixel takes the mean position of its covered pixels, which is
+// the same world point whichever way the view turns (the mean commutes with the rigid
+// view_to_world).
+cv::Mat turbulence_map(const WatercolorImages& in, const glm::mat4& view_to_world,
+                       const WatercolorParams& p, float sigma) {
+  const cv::Size size = in.depth.size();
+  cv::Mat cover, cover3, half_cover, half_pos;
+  cv::threshold(in.depth, cover, 0.0, 1.0, cv::THRESH_BINARY);
+  cv::merge(std::vector<cv::Mat>{cover, cover, cover}, cover3);
+  const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
+  cv::resize(cover, half_cover, half, 0, 0, cv::INTER_AREA);
+  cv::resize(in.position.mul(cover3), half_pos, half, 0, 0, cv::INTER_AREA);
+  for (int y = 0; y < half.height; ++y) {
+    const float* c = half_cover.ptr<float>(y);
+    cv::Vec3f* q = half_pos.ptr<cv::Vec3f>(y);
+    for (int x = 0; x < half.width; ++x)
+      q[x] = c[x] > 0.0f ? q[x] / c[x] : cv::Vec3f(0, 0, 0);
   }
+  cv::Mat half_turb = watercolor_turbulence(half_pos, half_cover, view_to_world, p);
+  // Pigment that bled past the silhouette takes the turbulence of the nearest surface
+  // (normalised convolution).
+  const float fill_sigma = std::max(2.0f, sigma / 2.0f);
+  const cv::Mat ws = blur(half_turb.mul(half_cover), fill_sigma);
+  const cv::Mat cs = blur(half_cover, fill_sigma);
+  cv::Mat filled;
+  cv::divide(ws, cv::max(cs, 1e-6), filled);
+  filled.copyTo(half_turb, half_cover == 0.0f);
+  cv::Mat turb;
+  cv::resize(half_turb, turb, size, 0, 0, cv::INTER_LINEAR);
+  return turb;
+}
 
-  cv::Mat out(size, CV_8UC4);
+// The glazed density over the paper, modulated by the paper's relief and the turbulence
+// (empty = none), encoded as opaque 8-bit BGRA sRGB.
+cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& turb,
+                 const WatercolorParams& p, const SrgbTables& srgb) {
+  cv::Mat out(density.size(), CV_8UC4);
   const float beta_paper = p.paper_strength, beta_turb = p.turbulence_strength;
   const glm::vec3 paper_color = glm::clamp(p.paper_color, 0.0f, 1.0f);
   const cv::Vec3f paper_bgr(paper_color.b, paper_color.g, paper_color.r);
-  cv::parallel_for_(cv::Range(0, size.height), [&](const cv::Range& rows) {
+  cv::parallel_for_(cv::Range(0, density.rows), [&](const cv::Range& rows) {
     for (int y = rows.start; y < rows.end; ++y) {
       const cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
       const float* pp = paper.ptr<float>(y);
       const float* tb = turb.empty() ? nullptr : turb.ptr<float>(y);
       cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
-      for (int x = 0; x < size.width; ++x) {
+      for (int x = 0; x < density.cols; ++x) {
         // Bousseau's density formula with d = 1 + beta (T - 0.5): pigment settles in the paper's
         // hollows (low relief = more pigment) and follows the turbulence.
         const float d_paper = texture_density(1.0f - pp[x], beta_paper);
@@ -260,6 +290,26 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
     }
   });
   return out;
+}
+
+}  // namespace
+
+cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
+                   const WatercolorParams& p) {
+  const bool use_albedo = check_inputs(in, p);
+  const double scale = reference_scale(in.id.size());
+  Shared s = shared_settings(in, p, scale);
+  cv::Mat first_label;
+  std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
+  finish_layers(layers, use_albedo, *s.srgb);
+  const std::vector<Layer> sorted = back_to_front(layers, first_label, s);
+  const bool wobble = p.wobble > 0.0f && !sorted.empty();
+  const Paper paper = watercolor_internal::make_paper(s.size, p, wobble);
+  if (wobble) set_wobble(paper, p, scale, s);
+  const cv::Mat density = glaze(s, sorted);
+  const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
+  const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
+  return on_paper(density, paper.relief, turb, p, *s.srgb);
 }
 
 void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
