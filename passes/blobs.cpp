@@ -96,10 +96,7 @@ cv::Point fixed_point(glm::vec2 p, cv::Point2f origin) {
           static_cast<int>(std::lround((p.y - 0.5f - origin.y) * (1 << kShift)))};
 }
 
-}  // namespace
-
-cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame& frame,
-                    const BlobParams& p) {
+void check_inputs(const BlobImages& in, const BlobFrame& frame, const BlobParams& p) {
   validate_blob_params(p);
   const cv::Size size = in.id.size();
   expect_image(in.id, CV_32SC1, {}, "blobs: id");
@@ -107,165 +104,217 @@ cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame&
   expect_image(in.albedo, CV_8UC4, size, "blobs: albedo");
   if (blob_needs_position(frame.lighting, p)) expect_image(in.position, CV_32FC3, size, "position");
   if (!in.lines.empty()) expect_image(in.lines, CV_32FC1, size, "blobs: lines");
-  const auto& lin = srgb_tables().to_linear;
-  const double scale = reference_scale(size);
+}
 
-  // Ground: background, then trunk and branches as the raster pass drew them.
+// Ground: background, then trunk and branches as the raster pass drew them (CV_32FC4, linear
+// BGR and coverage).
+cv::Mat paint_ground(const BlobImages& in, const BlobFrame& frame, const glm::vec3& bg_bgr) {
+  const cv::Size size = in.id.size();
+  const auto& lin = srgb_tables().to_linear;
   cv::Mat out(size, CV_32FC4);
   const glm::vec4 bg = frame.background;
-  const glm::vec3 bg_bgr(bg.b, bg.g, bg.r);
   out.setTo(cv::Scalar(bg.b, bg.g, bg.r, bg.a));
-  if (frame.branch_cluster != 0)
-    for_bands(size.height, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) {
-        const int32_t* ids = in.id.ptr<int32_t>(y);
-        const cv::Vec4b* c = in.color.ptr<cv::Vec4b>(y);
-        cv::Vec4f* o = out.ptr<cv::Vec4f>(y);
-        for (int x = 0; x < size.width; ++x) {
-          if (static_cast<uint32_t>(ids[x]) != frame.branch_cluster) continue;
-          float a = 0;
-          const glm::vec3 s = surface_color(c[x], bg_bgr, lin, &a);
-          for (int k = 0; k < 3; ++k)
-            o[x][k] += (s[k] - o[x][k]) * a;
-          o[x][3] += (1.0f - o[x][3]) * a;
-        }
-      }
-    });
-
-  const cv::Mat ground = blobs.fade > 0.0f ? out.clone() : cv::Mat();
-  std::vector<ViewLight> lights;
-  for (const Light& l : frame.lighting.lights)
-    lights.push_back({light_in_view(l, frame.view), l.type == Light::Type::Point, l.color});
-  const auto means = cluster_means(in);
-  const float opacity = 1.0f - p.translucency;
-  const float edge_px = static_cast<float>(p.edge_width * scale);
-
-  auto paint_one = [&](cv::Mat& img, const BlobOutline& b) {
-    if (b.wrap.empty() || !(b.opacity > 0.0f)) return;
-    const auto mean_it = means.find(b.cluster);
-    const ClusterMeans m = mean_it == means.end() ? ClusterMeans{} : mean_it->second;
-    // Two rounds of the stream: one alone leaves neighbouring cluster ids' tones close.
-    uint64_t state = static_cast<uint64_t>(p.seed) ^ (uint64_t{b.cluster} * 0xD1B54A32D192ED03ull);
-    splitmix64(state);
-    const float tone = 1.0f + p.variation * (2.0f * static_cast<float>(uniform01(state)) - 1.0f);
-    const glm::vec3 wash(static_cast<float>(m.albedo[0]) * tone,
-                         static_cast<float>(m.albedo[1]) * tone,
-                         static_cast<float>(m.albedo[2]) * tone);  // B, G, R
-    const glm::vec3 at(static_cast<float>(m.position[0]), static_cast<float>(m.position[1]),
-                       static_cast<float>(m.position[2]));
-    glm::vec3 blend_dir = glm::normalize(glm::vec3(p.blend_right, p.blend_up, 1.0f));
-    if (p.blend_light == "point") {
-      const float d = std::max(-at.z, 1e-6f);
-      blend_dir = toward({glm::vec3(p.blend_right * d, p.blend_up * d, 0.0f), true, {}}, at);
-    }
-    std::vector<glm::vec3> light_dirs;
-    for (const ViewLight& l : lights)
-      light_dirs.push_back(toward(l, at));
-
-    const std::vector<glm::vec2> poly = outline_polygon(b);
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    for (const glm::vec2& q : poly) {
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    const int pad = 2 + static_cast<int>(std::ceil(edge_px * (1.0f + p.edge_left)));
-    const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(lo.x)) - pad,
-                                            static_cast<int>(std::floor(lo.y)) - pad),
-                                  cv::Point(static_cast<int>(std::ceil(hi.x)) + pad + 1,
-                                            static_cast<int>(std::ceil(hi.y)) + pad + 1)) &
-                         cv::Rect(cv::Point(0, 0), size);
-    if (box.empty()) return;
-    const cv::Point2f origin(static_cast<float>(box.x), static_cast<float>(box.y));
-    std::vector<cv::Point> pts;
-    pts.reserve(poly.size());
-    for (const glm::vec2& q : poly)
-      pts.push_back(fixed_point(q, origin));
-    cv::Mat inside = cv::Mat::zeros(box.size(), CV_8UC1);
-    cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{pts}, cv::Scalar(255), cv::LINE_AA,
-                 kShift);
-    cv::Mat edge;
-    if (edge_px > 0) {
-      edge = cv::Mat::zeros(box.size(), CV_8UC1);
-      double area = 0;  // shoelace, image coordinates: > 0 clockwise on screen
-      for (size_t i = 0; i < poly.size(); ++i) {
-        const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
-        area += static_cast<double>(a.x) * c.y - static_cast<double>(c.x) * a.y;
-      }
-      const float orient = area >= 0 ? 1.0f : -1.0f;
-      for (size_t i = 0; i < poly.size(); ++i) {
-        const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
-        const glm::vec2 d = c - a;
-        const float len = glm::length(d);
-        const float nx = len > 0 ? orient * d.y / len : 0.0f;  // outward normal's x
-        const float w = edge_px * (1.0f + p.edge_left * std::max(0.0f, -nx));
-        // The stroke is centred on the outline and clipped to the inside: twice the width,
-        // less the pixel an antialiased cv::line adds to its thickness.
-        const int thickness = std::max(1, static_cast<int>(std::lround(2.0f * w)) - 1);
-        cv::line(edge, fixed_point(a, origin), fixed_point(c, origin), cv::Scalar(255), thickness,
-                 cv::LINE_AA, kShift);
+  if (frame.branch_cluster == 0) return out;
+  for_bands(size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const int32_t* ids = in.id.ptr<int32_t>(y);
+      const cv::Vec4b* c = in.color.ptr<cv::Vec4b>(y);
+      cv::Vec4f* o = out.ptr<cv::Vec4f>(y);
+      for (int x = 0; x < size.width; ++x) {
+        if (static_cast<uint32_t>(ids[x]) != frame.branch_cluster) continue;
+        float a = 0;
+        const glm::vec3 s = surface_color(c[x], bg_bgr, lin, &a);
+        for (int k = 0; k < 3; ++k)
+          o[x][k] += (s[k] - o[x][k]) * a;
+        o[x][3] += (1.0f - o[x][3]) * a;
       }
     }
-    const BlobShape shape = make_blob_shape(b.wrap.points, b.wrap.center, p.peaks, p.peak_height);
-    const glm::vec3 sil = glm::min(glm::vec3(1.0f), p.silhouette_tone * wash);
-    const float ambient = frame.lighting.ambient;
-    for_bands(box.height, [&](int r0, int r1) {
-      for (int r = r0; r < r1; ++r) {
-        const int y = box.y + r;
-        const uint8_t* ins = inside.ptr<uint8_t>(r);
-        const uint8_t* eg = edge.empty() ? nullptr : edge.ptr<uint8_t>(r);
-        const int32_t* ids = in.id.ptr<int32_t>(y);
-        const cv::Vec4b* col = in.color.ptr<cv::Vec4b>(y);
-        const float* ln = in.lines.empty() ? nullptr : in.lines.ptr<float>(y);
-        cv::Vec4f* o = img.ptr<cv::Vec4f>(y);
-        for (int cx = 0; cx < box.width; ++cx) {
-          if (!ins[cx]) continue;
-          const int x = box.x + cx;
-          const glm::vec3 n = blob_normal(shape, glm::vec2(x + 0.5f, y + 0.5f));
-          glm::vec3 light(ambient);
-          for (size_t k = 0; k < lights.size(); ++k)
-            light += lights[k].color * std::max(0.0f, glm::dot(n, light_dirs[k]));
-          const glm::vec3 approx = wash * glm::vec3(light.b, light.g, light.r);
-          glm::vec3 c = approx;
-          if (static_cast<uint32_t>(ids[x]) == b.cluster) {
-            const float alpha = std::clamp(
-                p.blend_ambient + p.blend_diffuse * std::max(0.0f, glm::dot(n, blend_dir)), 0.0f,
-                1.0f);
-            float coverage = 0;
-            glm::vec3 detail = surface_color(col[x], bg_bgr, lin, &coverage);
-            if (ln) detail += (sil - detail) * ln[x];
-            // Where the leaf covers the pixel partly, the wash fills the rest.
-            c = approx + (approx * alpha + detail * (1.0f - alpha) - approx) * coverage;
-          }
-          if (eg && eg[cx]) {
-            const glm::vec3 ink = glm::min(glm::vec3(1.0f), p.edge_tone * approx);
-            c += (ink - c) * (eg[cx] / 255.0f);
-          }
-          const float a = ins[cx] / 255.0f * opacity * b.opacity;
-          for (int k = 0; k < 3; ++k)
-            o[x][k] += (c[k] - o[x][k]) * a;
-          o[x][3] += (1.0f - o[x][3]) * a;
-        }
-      }
-    });
-  };
+  });
+  return out;
+}
 
-  for (size_t i : blobs.order)
-    paint_one(out, blobs.blobs[i]);
-  if (blobs.fade > 0.0f && blobs.next_order != blobs.order) {
-    // Dudley §5.1: cross-fade to the next keyframe's order instead of popping.
-    cv::Mat next = ground.clone();
-    for (size_t i : blobs.next_order)
-      paint_one(next, blobs.blobs[i]);
-    cv::addWeighted(out, 1.0 - blobs.fade, next, blobs.fade, 0.0, out);
+// One blob's colour and lighting: its wash (the cluster's mean albedo, varied per cluster), the
+// blend light's direction and each light's direction at the cluster's mean position.
+struct BlobLook {
+  glm::vec3 wash;  // B, G, R
+  glm::vec3 blend_dir;
+  std::vector<glm::vec3> light_dirs;
+};
+
+BlobLook blob_look(const ClusterMeans& m, uint32_t cluster, const std::vector<ViewLight>& lights,
+                   const BlobParams& p) {
+  BlobLook look;
+  // Two rounds of the stream: one alone leaves neighbouring cluster ids' tones close.
+  uint64_t state = static_cast<uint64_t>(p.seed) ^ (uint64_t{cluster} * 0xD1B54A32D192ED03ull);
+  splitmix64(state);
+  const float tone = 1.0f + p.variation * (2.0f * static_cast<float>(uniform01(state)) - 1.0f);
+  look.wash =
+      glm::vec3(static_cast<float>(m.albedo[0]) * tone, static_cast<float>(m.albedo[1]) * tone,
+                static_cast<float>(m.albedo[2]) * tone);
+  const glm::vec3 at(static_cast<float>(m.position[0]), static_cast<float>(m.position[1]),
+                     static_cast<float>(m.position[2]));
+  look.blend_dir = glm::normalize(glm::vec3(p.blend_right, p.blend_up, 1.0f));
+  if (p.blend_light == "point") {
+    const float d = std::max(-at.z, 1e-6f);
+    look.blend_dir = toward({glm::vec3(p.blend_right * d, p.blend_up * d, 0.0f), true, {}}, at);
+  }
+  for (const ViewLight& l : lights)
+    look.light_dirs.push_back(toward(l, at));
+  return look;
+}
+
+// The outline's bounding box padded by `pad` px, clipped to the image.
+cv::Rect blob_box(const std::vector<glm::vec2>& poly, int pad, const cv::Size& size) {
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  for (const glm::vec2& q : poly) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  return cv::Rect(cv::Point(static_cast<int>(std::floor(lo.x)) - pad,
+                            static_cast<int>(std::floor(lo.y)) - pad),
+                  cv::Point(static_cast<int>(std::ceil(hi.x)) + pad + 1,
+                            static_cast<int>(std::ceil(hi.y)) + pad + 1)) &
+         cv::Rect(cv::Point(0, 0), size);
+}
+
+// The antialiased inside of the outline over `box` (CV_8UC1).
+cv::Mat blob_inside(const std::vector<glm::vec2>& poly, const cv::Rect& box) {
+  const cv::Point2f origin(static_cast<float>(box.x), static_cast<float>(box.y));
+  std::vector<cv::Point> pts;
+  pts.reserve(poly.size());
+  for (const glm::vec2& q : poly)
+    pts.push_back(fixed_point(q, origin));
+  cv::Mat inside = cv::Mat::zeros(box.size(), CV_8UC1);
+  cv::fillPoly(inside, std::vector<std::vector<cv::Point>>{pts}, cv::Scalar(255), cv::LINE_AA,
+               kShift);
+  return inside;
+}
+
+// The outline's edge stroke over `box` (CV_8UC1), `edge_px` wide and wider on the left by
+// edge_left; clipped to the inside when painted.
+cv::Mat blob_edge(const std::vector<glm::vec2>& poly, const cv::Rect& box, float edge_px,
+                  float edge_left) {
+  const cv::Point2f origin(static_cast<float>(box.x), static_cast<float>(box.y));
+  cv::Mat edge = cv::Mat::zeros(box.size(), CV_8UC1);
+  double area = 0;  // shoelace, image coordinates: > 0 clockwise on screen
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
+    area += static_cast<double>(a.x) * c.y - static_cast<double>(c.x) * a.y;
+  }
+  const float orient = area >= 0 ? 1.0f : -1.0f;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const glm::vec2 a = poly[i], c = poly[(i + 1) % poly.size()];
+    const glm::vec2 d = c - a;
+    const float len = glm::length(d);
+    const float nx = len > 0 ? orient * d.y / len : 0.0f;  // outward normal's x
+    const float w = edge_px * (1.0f + edge_left * std::max(0.0f, -nx));
+    // The stroke is centred on the outline and clipped to the inside: twice the width,
+    // less the pixel an antialiased cv::line adds to its thickness.
+    const int thickness = std::max(1, static_cast<int>(std::lround(2.0f * w)) - 1);
+    cv::line(edge, fixed_point(a, origin), fixed_point(c, origin), cv::Scalar(255), thickness,
+             cv::LINE_AA, kShift);
+  }
+  return edge;
+}
+
+// Paints blobs over an image in painter's order (Dudley §4.2-4.3), with what every blob of a
+// frame shares.
+class BlobPainter {
+ public:
+  BlobPainter(const BlobImages& in, const BlobFrame& frame, const BlobParams& p,
+              const glm::vec3& bg_bgr)
+      : m_in(in),
+        m_frame(frame),
+        m_p(p),
+        m_bg(bg_bgr),
+        m_means(cluster_means(in)),
+        m_opacity(1.0f - p.translucency),
+        m_edge_px(static_cast<float>(p.edge_width * reference_scale(in.id.size()))) {
+    for (const Light& l : frame.lighting.lights)
+      m_lights.push_back({light_in_view(l, frame.view), l.type == Light::Type::Point, l.color});
   }
 
+  void paint(cv::Mat& img, const BlobOutline& b) const {
+    if (b.wrap.empty() || !(b.opacity > 0.0f)) return;
+    const auto mean_it = m_means.find(b.cluster);
+    const ClusterMeans m = mean_it == m_means.end() ? ClusterMeans{} : mean_it->second;
+    const BlobLook look = blob_look(m, b.cluster, m_lights, m_p);
+    const std::vector<glm::vec2> poly = outline_polygon(b);
+    const int pad = 2 + static_cast<int>(std::ceil(m_edge_px * (1.0f + m_p.edge_left)));
+    const cv::Rect box = blob_box(poly, pad, img.size());
+    if (box.empty()) return;
+    const cv::Mat inside = blob_inside(poly, box);
+    const cv::Mat edge = m_edge_px > 0 ? blob_edge(poly, box, m_edge_px, m_p.edge_left) : cv::Mat();
+    const BlobShape shape =
+        make_blob_shape(b.wrap.points, b.wrap.center, m_p.peaks, m_p.peak_height);
+    for_bands(box.height, [&](int r0, int r1) {
+      for (int r = r0; r < r1; ++r)
+        paint_row(img, b, look, shape, box, inside, edge, r);
+    });
+  }
+
+ private:
+  // Row r of the blob's box: the shaded wash, the leaf detail blended in by the blend light
+  // where the blob's own cluster is, the edge's ink, composited with the blob's opacity.
+  void paint_row(cv::Mat& img, const BlobOutline& b, const BlobLook& look, const BlobShape& shape,
+                 const cv::Rect& box, const cv::Mat& inside, const cv::Mat& edge, int r) const {
+    const auto& lin = srgb_tables().to_linear;
+    const glm::vec3 sil = glm::min(glm::vec3(1.0f), m_p.silhouette_tone * look.wash);
+    const int y = box.y + r;
+    const uint8_t* ins = inside.ptr<uint8_t>(r);
+    const uint8_t* eg = edge.empty() ? nullptr : edge.ptr<uint8_t>(r);
+    const int32_t* ids = m_in.id.ptr<int32_t>(y);
+    const cv::Vec4b* col = m_in.color.ptr<cv::Vec4b>(y);
+    const float* ln = m_in.lines.empty() ? nullptr : m_in.lines.ptr<float>(y);
+    cv::Vec4f* o = img.ptr<cv::Vec4f>(y);
+    for (int cx = 0; cx < box.width; ++cx) {
+      if (!ins[cx]) continue;
+      const int x = box.x + cx;
+      const glm::vec3 n = blob_normal(shape, glm::vec2(x + 0.5f, y + 0.5f));
+      glm::vec3 light(m_frame.lighting.ambient);
+      for (size_t k = 0; k < m_lights.size(); ++k)
+        light += m_lights[k].color * std::max(0.0f, glm::dot(n, look.light_dirs[k]));
+      const glm::vec3 approx = look.wash * glm::vec3(light.b, light.g, light.r);
+      glm::vec3 c = approx;
+      if (static_cast<uint32_t>(ids[x]) == b.cluster) {
+        const float alpha = std::clamp(
+            m_p.blend_ambient + m_p.blend_diffuse * std::max(0.0f, glm::dot(n, look.blend_dir)),
+            0.0f, 1.0f);
+        float coverage = 0;
+        glm::vec3 detail = surface_color(col[x], m_bg, lin, &coverage);
+        if (ln) detail += (sil - detail) * ln[x];
+        // Where the leaf covers the pixel partly, the wash fills the rest.
+        c = approx + (approx * alpha + detail * (1.0f - alpha) - approx) * coverage;
+      }
+      if (eg && eg[cx]) {
+        const glm::vec3 ink = glm::min(glm::vec3(1.0f), m_p.edge_tone * approx);
+        c += (ink - c) * (eg[cx] / 255.0f);
+      }
+      const float a = ins[cx] / 255.0f * m_opacity * b.opacity;
+      for (int k = 0; k < 3; ++k)
+        o[x][k] += (c[k] - o[x][k]) * a;
+      o[x][3] += (1.0f - o[x][3]) * a;
+    }
+  }
+
+  const BlobImages& m_in;
+  const BlobFrame& m_frame;
+  const BlobParams& m_p;
+  glm::vec3 m_bg;
+  std::unordered_map<uint32_t, ClusterMeans> m_means;
+  float m_opacity, m_edge_px;
+  std::vector<ViewLight> m_lights;
+};
+
+// Linear BGR + coverage (CV_32FC4) as 8-bit sRGB BGRA.
+cv::Mat encode_bgra(const cv::Mat& out) {
   const auto& tables = srgb_tables();
-  cv::Mat result(size, CV_8UC4);
-  for_bands(size.height, [&](int y0, int y1) {
+  cv::Mat result(out.size(), CV_8UC4);
+  for_bands(out.rows, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const cv::Vec4f* o = out.ptr<cv::Vec4f>(y);
       cv::Vec4b* r = result.ptr<cv::Vec4b>(y);
-      for (int x = 0; x < size.width; ++x) {
+      for (int x = 0; x < out.cols; ++x) {
         for (int k = 0; k < 3; ++k)
           r[x][k] = encode_srgb(tables, o[x][k]);
         r[x][3] = cv::saturate_cast<uint8_t>(std::lround(o[x][3] * 255.0f));
@@ -273,6 +322,27 @@ cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame&
     }
   });
   return result;
+}
+
+}  // namespace
+
+cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame& frame,
+                    const BlobParams& p) {
+  check_inputs(in, frame, p);
+  const glm::vec3 bg_bgr(frame.background.b, frame.background.g, frame.background.r);
+  cv::Mat out = paint_ground(in, frame, bg_bgr);
+  const cv::Mat ground = blobs.fade > 0.0f ? out.clone() : cv::Mat();
+  const BlobPainter painter(in, frame, p, bg_bgr);
+  for (size_t i : blobs.order)
+    painter.paint(out, blobs.blobs[i]);
+  if (blobs.fade > 0.0f && blobs.next_order != blobs.order) {
+    // Dudley §5.1: cross-fade to the next keyframe's order instead of popping.
+    cv::Mat next = ground.clone();
+    for (size_t i : blobs.next_order)
+      painter.paint(next, blobs.blobs[i]);
+    cv::addWeighted(out, 1.0 - blobs.fade, next, blobs.fade, 0.0, out);
+  }
+  return encode_bgra(out);
 }
 
 }  // namespace sylva
