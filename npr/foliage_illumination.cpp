@@ -70,36 +70,21 @@ glm::vec3 unit_or(const glm::vec3& v, const glm::vec3& fallback) {
   return len > 1e-20f && std::isfinite(len) ? v / len : fallback;
 }
 
-}  // namespace
-
-void validate_foliage_params(const FoliageParams& p) {
-  if (p.tau && !(std::isfinite(*p.tau) && *p.tau >= 0.0f))
-    throw InputError("tau", "must be 'auto' or a finite density >= 0");
-  if (p.fraction && !(*p.fraction > 0.0 && *p.fraction <= 1.0))
-    throw InputError("fraction", "must be 'auto' or in (0, 1]");
-  if (p.grid < 2 || p.grid > 1024)
-    throw InputError("grid", "must be in [2, 1024] cells, got " + std::to_string(p.grid));
-  if (!(p.blend >= 0.0f && p.blend <= 1.0f)) throw InputError("blend", "must be in [0, 1]");
-  validate_ambient(p.ambient);
-}
-
-FoliageIllumination compute_foliage_illumination(const Scene& scene, const FoliageParams& p) {
-  validate_foliage_params(p);
+void check_scene(const Scene& scene) {
   for (const Mesh& m : scene.meshes)
     SYLVA_CHECK(
         m.roles.size() == m.triangle_count() && m.primitive_ids.size() == m.triangle_count(),
         "foliage illumination needs roles and primitive ids (finish_scene)");
-  const Bounds fb = scene.bounds(Role::Foliage);
-  if (fb.empty())
+  if (scene.bounds(Role::Foliage).empty())
     throw InputError("scene",
                      "has no foliage to build the implicit surface from (see "
                      "--foliage and `sylva info`)");
-  FoliageIllumination out;
-  FoliageStats& st = out.stats;
-  auto t0 = Clock::now();
+}
 
-  // rho: auto from the model's size and leaf spacing (Luft §3.1: "values that provide
-  // adequate results can be automatically specified with regard to the size of the model").
+// rho: auto from the model's size and leaf spacing (Luft §3.1: "values that provide adequate
+// results can be automatically specified with regard to the size of the model"). Sets
+// st.leaves and st.rho.
+void choose_rho(const Scene& scene, const Bounds& fb, const FoliageParams& p, FoliageStats& st) {
   st.leaves = count_leaves(scene);
   const double diag = std::max<double>(fb.diagonal(), 1e-30);
   const glm::dvec3 ext = glm::max(glm::dvec3(fb.max - fb.min), glm::dvec3(0.01 * diag));
@@ -107,9 +92,12 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
   const double automatic = p.picture_rho > 0.0 ? p.picture_rho : 0.08 * diag;
   st.rho = p.rho.resolve(diag, std::max(automatic, 3.0 * spacing));
   if (!(st.rho > 0.0) || !std::isfinite(st.rho)) throw InputError("rho", "must be > 0");
-  const float rho = float(st.rho);
+}
 
-  ScalarGrid grid = make_grid(fb.min - glm::vec3(rho), fb.max + glm::vec3(rho), p.grid);
+// The generator points (§3.1), their fraction auto within the splatting budget. Sets
+// st.fraction and st.generators.
+std::vector<glm::vec3> choose_generators(const Scene& scene, const ScalarGrid& grid,
+                                         const FoliageParams& p, FoliageStats& st) {
   const double ball = 4.0 / 3.0 * std::numbers::pi * std::pow(st.rho / grid.spacing, 3.0);
   st.fraction =
       p.fraction ? *p.fraction
@@ -120,68 +108,69 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
   go.seed = p.seed;
   std::vector<glm::vec3> generators = make_generators(scene, go);
   st.generators = generators.size();
+  return generators;
+}
 
-  // tau: auto = half the 10th percentile of the raw density at (up to 4096 strided)
-  // generators: the surface wraps nearly every leaf with a margin the grid can resolve.
-  if (p.tau) {
-    st.tau = *p.tau;
-  } else {
-    const DensityField raw(generators, rho, 0.0f);
-    const size_t stride = std::max<size_t>(1, generators.size() / 4096);
-    std::vector<float> at;
-    for (size_t i = 0; i < generators.size(); i += stride)
-      at.push_back(raw.value(generators[i]));
-    st.tau = 0.5 * quantile(at, 0.10);
-  }
-  const DensityField field(std::move(generators), rho, float(st.tau));
-  field.fill_grid(grid);
+// tau: auto = half the 10th percentile of the raw density at (up to 4096 strided) generators:
+// the surface wraps nearly every leaf with a margin the grid can resolve.
+double choose_tau(const std::vector<glm::vec3>& generators, float rho, const FoliageParams& p) {
+  if (p.tau) return *p.tau;
+  const DensityField raw(generators, rho, 0.0f);
+  const size_t stride = std::max<size_t>(1, generators.size() / 4096);
+  std::vector<float> at;
+  for (size_t i = 0; i < generators.size(); i += stride)
+    at.push_back(raw.value(generators[i]));
+  return 0.5 * quantile(at, 0.10);
+}
+
+// The grid holds no positive value: says whether the grid is too coarse or tau too high.
+[[noreturn]] void explain_empty_field(const DensityField& field, const ScalarGrid& grid,
+                                      const FoliageParams& p, const FoliageStats& st) {
   const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
-  if (!(*hi > 0.0f)) {
-    char buf[256];
-    float peak = -float(st.tau);  // is the surface there but between the grid's nodes?
-    for (size_t i = 0; i < field.generators().size();
-         i += std::max<size_t>(1, st.generators / 4096))
-      peak = std::max(peak, field.value(field.generators()[i]));
-    if (peak > 0.0f) {
-      std::snprintf(buf, sizeof buf,
-                    "%d cells are too coarse for rho %g: no grid node lies inside the surface; "
-                    "raise grid or rho",
-                    p.grid, st.rho);
-      throw InputError("grid", buf);
-    }
+  char buf[256];
+  float peak = -float(st.tau);  // is the surface there but between the grid's nodes?
+  for (size_t i = 0; i < field.generators().size(); i += std::max<size_t>(1, st.generators / 4096))
+    peak = std::max(peak, field.value(field.generators()[i]));
+  if (peak > 0.0f) {
     std::snprintf(buf, sizeof buf,
-                  "tau %g is at or above every density: F + tau spans [%g, %g] with rho %g; "
-                  "lower tau or raise rho",
-                  st.tau, double(*lo) + st.tau, double(*hi) + st.tau, st.rho);
-    throw InputError("tau", buf);
+                  "%d cells are too coarse for rho %g: no grid node lies inside the surface; "
+                  "raise grid or rho",
+                  p.grid, st.rho);
+    throw InputError("grid", buf);
   }
-  st.seconds_field = since(t0);
+  std::snprintf(buf, sizeof buf,
+                "tau %g is at or above every density: F + tau spans [%g, %g] with rho %g; "
+                "lower tau or raise rho",
+                st.tau, double(*lo) + st.tau, double(*hi) + st.tau, st.rho);
+  throw InputError("tau", buf);
+}
 
-  // Implicit surface with outward normals -grad F / |grad F| (analytic gradient).
-  t0 = Clock::now();
-  if (p.normals == NormalSource::Surface) {
-    out.surface = extract_isosurface(grid);
-    optimize_surface(out.surface, p.optimize);
-    out.surface.normals.resize(out.surface.positions.size());
+// The implicit surface with outward normals -grad F / |grad F| (analytic gradient).
+SurfaceMesh build_surface(const DensityField& field, const ScalarGrid& grid,
+                          const FoliageParams& p) {
+  SurfaceMesh surface = extract_isosurface(grid);
+  optimize_surface(surface, p.optimize);
+  surface.normals.resize(surface.positions.size());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < long(out.surface.positions.size()); ++i) {
-      glm::vec3 g;
-      field.value_and_gradient(out.surface.positions[size_t(i)], g);
-      out.surface.normals[size_t(i)] = unit_or(
-          -g, unit_or(-grid.sample_gradient(out.surface.positions[size_t(i)]), glm::vec3(0, 1, 0)));
-    }
-    st.surface_triangles = out.surface.triangle_count();
-    if (out.surface.positions.empty())
-      throw InputError("grid",
-                       "the implicit surface has no vertices at this grid resolution; "
-                       "raise grid or rho");
+  for (long i = 0; i < long(surface.positions.size()); ++i) {
+    glm::vec3 g;
+    field.value_and_gradient(surface.positions[size_t(i)], g);
+    surface.normals[size_t(i)] = unit_or(
+        -g, unit_or(-grid.sample_gradient(surface.positions[size_t(i)]), glm::vec3(0, 1, 0)));
   }
-  st.seconds_surface = since(t0);
+  if (surface.positions.empty())
+    throw InputError("grid",
+                     "the implicit surface has no vertices at this grid resolution; "
+                     "raise grid or rho");
+  return surface;
+}
 
-  // Per-vertex density, ka (Eq. 4) and realigned normals (§3.3).
-  t0 = Clock::now();
+// Per mesh and vertex: the density F + tau; sets st.density_min/max. `foliage_density` gets
+// the foliage vertices' values.
+std::vector<std::vector<float>> vertex_densities(const Scene& scene, const ScalarGrid& grid,
+                                                 FoliageStats& st,
+                                                 std::vector<float>& foliage_density) {
   std::vector<std::vector<float>> density(scene.meshes.size());
-  std::vector<float> foliage_density;
   st.density_min = 1e30;
   st.density_max = -1e30;
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
@@ -198,19 +187,22 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
       if (fol[v]) foliage_density.push_back(d[v]);
     }
   }
-  AmbientParams ap = p.ambient;
-  if (p.d_min_auto) {
-    const float q = foliage_density.empty() ? 0.0f : quantile(foliage_density, 0.90);
-    ap.d_min = q > 0.0f ? q : std::max(float(st.density_max), 1e-6f);
-  }
-  st.d_min = ap.d_min;
+  return density;
+}
 
-  out.normals.resize(scene.meshes.size());
-  out.ka.resize(scene.meshes.size());
-  // Foliage vertices of all meshes go through one nearest-surface query (scenes with a mesh
-  // per leaf would otherwise build a kd-tree per leaf).
+// Foliage vertices of all meshes, gathered for one nearest-surface query (scenes with a mesh
+// per leaf would otherwise build a kd-tree per leaf).
+struct FoliagePoints {
   std::vector<glm::vec3> points;
   std::vector<std::pair<uint32_t, uint32_t>> which;  // (mesh, vertex)
+};
+
+// Each vertex's own unit normal and its ka (Eq. 4) into `out`; returns the foliage vertices.
+FoliagePoints own_normals_and_ka(const Scene& scene, const std::vector<std::vector<float>>& density,
+                                 const AmbientParams& ap, FoliageIllumination& out) {
+  FoliagePoints f;
+  out.normals.resize(scene.meshes.size());
+  out.ka.resize(scene.meshes.size());
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const Mesh& mesh = scene.meshes[mi];
     Mesh m = mesh.normals.empty() ? mesh : Mesh{};
@@ -226,22 +218,81 @@ FoliageIllumination compute_foliage_illumination(const Scene& scene, const Folia
     }
     const std::vector<char> fol = foliage_vertices(mesh);
     for (size_t v = 0; v < fol.size(); ++v)
-      if (fol[v]) points.push_back(mesh.positions[v]), which.emplace_back(mi, v);
+      if (fol[v]) f.points.push_back(mesh.positions[v]), f.which.emplace_back(mi, v);
   }
-  std::vector<glm::vec3> target(points.size());
+  return f;
+}
+
+// The foliage normals realigned (§3.3) toward the surface's nearest normal or the field's
+// gradient.
+void realign_normals(const FoliagePoints& f, const ScalarGrid& grid, const FoliageParams& p,
+                     FoliageIllumination& out) {
+  std::vector<glm::vec3> target(f.points.size());
   if (p.normals == NormalSource::Surface) {
-    if (!points.empty()) target = nearest_surface_normals(out.surface, points);
+    if (!f.points.empty()) target = nearest_surface_normals(out.surface, f.points);
   } else {
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < long(points.size()); ++i) {
-      const auto [mi, v] = which[size_t(i)];
-      target[size_t(i)] = unit_or(-grid.sample_gradient(points[size_t(i)]), out.normals[mi][v]);
+    for (long i = 0; i < long(f.points.size()); ++i) {
+      const auto [mi, v] = f.which[size_t(i)];
+      target[size_t(i)] = unit_or(-grid.sample_gradient(f.points[size_t(i)]), out.normals[mi][v]);
     }
   }
-  for (size_t i = 0; i < points.size(); ++i) {
-    glm::vec3& n = out.normals[which[i].first][which[i].second];
+  for (size_t i = 0; i < f.points.size(); ++i) {
+    glm::vec3& n = out.normals[f.which[i].first][f.which[i].second];
     n = blend_normal(n, target[i], p.blend);
   }
+}
+
+}  // namespace
+
+void validate_foliage_params(const FoliageParams& p) {
+  if (p.tau && !(std::isfinite(*p.tau) && *p.tau >= 0.0f))
+    throw InputError("tau", "must be 'auto' or a finite density >= 0");
+  if (p.fraction && !(*p.fraction > 0.0 && *p.fraction <= 1.0))
+    throw InputError("fraction", "must be 'auto' or in (0, 1]");
+  if (p.grid < 2 || p.grid > 1024)
+    throw InputError("grid", "must be in [2, 1024] cells, got " + std::to_string(p.grid));
+  if (!(p.blend >= 0.0f && p.blend <= 1.0f)) throw InputError("blend", "must be in [0, 1]");
+  validate_ambient(p.ambient);
+}
+
+FoliageIllumination compute_foliage_illumination(const Scene& scene, const FoliageParams& p) {
+  validate_foliage_params(p);
+  check_scene(scene);
+  const Bounds fb = scene.bounds(Role::Foliage);
+  FoliageIllumination out;
+  FoliageStats& st = out.stats;
+  auto t0 = Clock::now();
+  choose_rho(scene, fb, p, st);
+  const float rho = float(st.rho);
+  ScalarGrid grid = make_grid(fb.min - glm::vec3(rho), fb.max + glm::vec3(rho), p.grid);
+  std::vector<glm::vec3> generators = choose_generators(scene, grid, p, st);
+  st.tau = choose_tau(generators, rho, p);
+  const DensityField field(std::move(generators), rho, float(st.tau));
+  field.fill_grid(grid);
+  if (!(*std::max_element(grid.values.begin(), grid.values.end()) > 0.0f))
+    explain_empty_field(field, grid, p, st);
+  st.seconds_field = since(t0);
+
+  t0 = Clock::now();
+  if (p.normals == NormalSource::Surface) {
+    out.surface = build_surface(field, grid, p);
+    st.surface_triangles = out.surface.triangle_count();
+  }
+  st.seconds_surface = since(t0);
+
+  t0 = Clock::now();
+  std::vector<float> foliage_density;
+  const std::vector<std::vector<float>> density =
+      vertex_densities(scene, grid, st, foliage_density);
+  AmbientParams ap = p.ambient;
+  if (p.d_min_auto) {
+    const float q = foliage_density.empty() ? 0.0f : quantile(foliage_density, 0.90);
+    ap.d_min = q > 0.0f ? q : std::max(float(st.density_max), 1e-6f);
+  }
+  st.d_min = ap.d_min;
+  const FoliagePoints foliage = own_normals_and_ka(scene, density, ap, out);
+  realign_normals(foliage, grid, p, out);
   st.seconds_shading = since(t0);
   return out;
 }
