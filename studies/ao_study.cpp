@@ -250,6 +250,138 @@ size_t ao_study_runs(const AoStudyOptions& o) {
   return n;
 }
 
+namespace {
+
+// One run of the study: the GL context and rasteriser with the scene uploaded, the covered
+// pixels, the reference and the time baseline, and the measured rows per model.
+class AoStudyRun {
+ public:
+  AoStudyRun(const Scene& scene, const AoStudyOptions& o)
+      : m_scene(scene), m_o(o), m_context(create_gl_context()), m_rasterizer(*m_context) {
+    m_rasterizer.upload(scene);
+    m_px = classify_pixels(scene, m_rasterizer, o);
+    if (m_px.index.empty())
+      throw InputError("view", "the scene covers no pixel of the " +
+                                   std::to_string(o.camera.width) + "x" +
+                                   std::to_string(o.camera.height) + " frame");
+  }
+
+  // The reference: ray-traced with the most rays, the same frame as the raytraced rows; its
+  // mean AO over the covered pixels goes to `mean`.
+  AoStudyRow reference(double& mean) {
+    AoStudyRow row;
+    row.model = "raytraced";
+    row.rays = m_o.reference_rays;
+    row.reference = true;
+    row.setup_seconds = 0.0;
+    double t = 0;
+    m_ref = measure(m_scene, m_rasterizer, m_o, AoShading{}, m_o.reference_rays, false, t);
+    row.frame_seconds = t;
+    double total = 0;
+    for (int i : m_px.index)
+      total += m_ref.ptr<float>(0)[i];
+    mean = total / double(m_px.index.size());
+    m_foliage.emplace(m_px, true, m_ref);
+    m_other.emplace(m_px, false, m_ref);
+    finish(row, m_ref);
+    return row;
+  }
+
+  // none: the time baseline (after reference()).
+  AoStudyRow none() {
+    AoStudyRow row;
+    row.model = "none";
+    row.setup_seconds = 0.0;
+    double t = 0;
+    const cv::Mat ao = measure(m_scene, m_rasterizer, m_o, AoShading{}, 0, true, t);
+    row.frame_seconds = t;
+    m_baseline = t;
+    row.added_seconds = 0.0;
+    finish(row, ao);
+    return row;
+  }
+  double baseline() const { return m_baseline; }
+
+  // A model's row: `setup` (timed) makes its shading, then its frames are measured; an
+  // InputError fails the row, not the study.
+  void run_row(AoStudyRow row, const std::function<AoShading()>& setup, int rays) {
+    try {
+      const auto t0 = Clock::now();
+      const AoShading shading = setup ? setup() : AoShading{};
+      row.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      if (shading.model == AoShading::Model::Shells) row.alpha_rho = shading.alpha_rho;
+      double frame = 0;
+      const cv::Mat ao = measure(m_scene, m_rasterizer, m_o, shading, rays, false, frame);
+      row.frame_seconds = frame;
+      row.added_seconds = frame - m_baseline;
+      finish(row, ao);
+    } catch (const InputError& e) {
+      row.setup_seconds.reset();
+      row.error = e.what();
+      std::replace(row.error.begin(), row.error.end(), '\n', ' ');
+      if (m_o.on_run) m_o.on_run(describe(row) + " (failed)");
+    }
+    m_rows[row.model].push_back(row);
+  }
+
+  // Hegeman et al.'s shading of `model` with k shells.
+  std::function<AoShading()> hegeman(const std::string& model, int k) const {
+    return [&scene = m_scene, &o = m_o, model, k] {
+      AoSettings s;
+      s.model = model;
+      s.shells = k;
+      s.alpha_rho = o.alpha_rho;
+      return scene_ao_shading(scene, s, o.seed);
+    };
+  }
+
+  // The Luft preprocessing's ka as the AO (the realigned normals do not change the AO buffer).
+  // It replaces the uploaded normals and ka for good, so it runs last.
+  std::function<AoShading()> luft() {
+    return [this] {
+      const FoliageIllumination luft = compute_foliage_illumination(m_scene, m_o.luft);
+      m_rasterizer.set_vertex_shading(vertex_shading(luft, KaEncoding::Attribute));
+      AoShading s;
+      s.model = AoShading::Model::Ka;
+      return s;
+    };
+  }
+
+  // The measured rows in kModels' order.
+  std::vector<AoStudyRow> rows() {
+    std::vector<AoStudyRow> out;
+    for (const std::string& m : kModels)
+      for (AoStudyRow& r : m_rows[m])
+        out.push_back(std::move(r));
+    return out;
+  }
+
+ private:
+  void finish(AoStudyRow& row, const cv::Mat& ao) const {
+    row.foliage = compare(ao, m_ref, *m_foliage);
+    row.nonfoliage = compare(ao, m_ref, *m_other);
+    if (m_o.on_run) m_o.on_run(describe(row));
+  }
+
+  const Scene& m_scene;
+  const AoStudyOptions& m_o;
+  std::unique_ptr<GlContext> m_context;
+  Rasterizer m_rasterizer;
+  Pixels m_px;
+  cv::Mat m_ref;
+  std::optional<PixelClass> m_foliage, m_other;  // made once the reference is traced
+  double m_baseline = 0;
+  std::map<std::string, std::vector<AoStudyRow>> m_rows;  // per model, in measuring order
+};
+
+AoStudyRow row_of(const std::string& model) {
+  AoStudyRow row;
+  row.model = model;
+  return row;
+}
+
+}  // namespace
+
 AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
   validate_ao_study(o);
   AoStudy study;
@@ -257,135 +389,39 @@ AoStudy run_ao_study(const Scene& scene, const AoStudyOptions& o) {
   study.height = o.camera.height;
   study.repeats = o.repeats;
   study.reference_rays = o.reference_rays;
-
-  const std::unique_ptr<GlContext> context = create_gl_context();
-  Rasterizer rasterizer(*context);
-  rasterizer.upload(scene);
-  const Pixels px = classify_pixels(scene, rasterizer, o);
-  if (px.index.empty())
-    throw InputError("view", "the scene covers no pixel of the " + std::to_string(study.width) +
-                                 "x" + std::to_string(study.height) + " frame");
-
-  std::optional<PixelClass> foliage, other;  // made once the reference is traced
-  auto finish = [&](AoStudyRow& row, const cv::Mat& ao, const cv::Mat& ref) {
-    row.foliage = compare(ao, ref, *foliage);
-    row.nonfoliage = compare(ao, ref, *other);
-    if (o.on_run) o.on_run(describe(row));
-  };
-
-  // The reference: ray-traced with the most rays, the same frame as the raytraced rows.
-  AoStudyRow ref_row;
-  ref_row.model = "raytraced";
-  ref_row.rays = o.reference_rays;
-  ref_row.reference = true;
-  ref_row.setup_seconds = 0.0;
-  double t = 0;
-  const cv::Mat ref = measure(scene, rasterizer, o, AoShading{}, o.reference_rays, false, t);
-  ref_row.frame_seconds = t;
-  double total = 0;
-  for (int i : px.index)
-    total += ref.ptr<float>(0)[i];
-  study.reference_mean = total / double(px.index.size());
-  foliage.emplace(px, true, ref);
-  other.emplace(px, false, ref);
-  finish(ref_row, ref, ref);
-
-  // none: the time baseline.
-  AoStudyRow none;
-  none.model = "none";
-  none.setup_seconds = 0.0;
-  const cv::Mat none_ao = measure(scene, rasterizer, o, AoShading{}, 0, true, t);
-  none.frame_seconds = t;
-  const double baseline = t;
-  none.added_seconds = 0.0;
-  ref_row.added_seconds = *ref_row.frame_seconds - baseline;
-  finish(none, none_ao, ref);
-
-  std::map<std::string, std::vector<AoStudyRow>> rows;  // per model, in measuring order
-  auto run_row = [&](AoStudyRow row, const std::function<AoShading()>& setup, int rays) {
-    try {
-      const auto t0 = Clock::now();
-      const AoShading shading = setup ? setup() : AoShading{};
-      row.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      if (shading.model == AoShading::Model::Shells) row.alpha_rho = shading.alpha_rho;
-      double frame = 0;
-      const cv::Mat ao = measure(scene, rasterizer, o, shading, rays, false, frame);
-      row.frame_seconds = frame;
-      row.added_seconds = frame - baseline;
-      finish(row, ao, ref);
-    } catch (const InputError& e) {
-      row.setup_seconds.reset();
-      row.error = e.what();
-      std::replace(row.error.begin(), row.error.end(), '\n', ' ');
-      if (o.on_run) o.on_run(describe(row) + " (failed)");
-    }
-    rows[row.model].push_back(row);
-  };
-  auto shells_setup = [&](const std::string& model, int k) {
-    return [&scene, &o, model, k] {
-      AoSettings s;
-      s.model = model;
-      s.shells = k;
-      s.alpha_rho = o.alpha_rho;
-      return scene_ao_shading(scene, s, o.seed);
-    };
-  };
+  AoStudyRun run(scene, o);
+  AoStudyRow ref_row = run.reference(study.reference_mean);
+  const AoStudyRow none = run.none();
+  ref_row.added_seconds = *ref_row.frame_seconds - run.baseline();
 
   if (wants(o, "constant")) {
-    AoStudyRow row;
-    row.model = "constant";
+    AoStudyRow row = row_of("constant");
     row.constant = study.reference_mean;
-    run_row(
-        row,
-        [&] {
-          AoShading s;
-          s.model = AoShading::Model::Constant;
-          s.constant = float(std::clamp(study.reference_mean, 0.0, 1.0));
-          return s;
-        },
-        0);
+    AoShading constant;
+    constant.model = AoShading::Model::Constant;
+    constant.constant = float(std::clamp(study.reference_mean, 0.0, 1.0));
+    run.run_row(
+        row, [constant] { return constant; }, 0);
   }
   for (const char* model : {"hegeman-sphere", "hegeman-ellipsoid"})
-    if (wants(o, model)) {
-      AoStudyRow row;
-      row.model = model;
-      run_row(row, shells_setup(model, 1), 0);
-    }
+    if (wants(o, model)) run.run_row(row_of(model), run.hegeman(model, 1), 0);
   if (wants(o, "hegeman-shells"))
     for (int k : o.shells) {
-      AoStudyRow row;
-      row.model = "hegeman-shells";
+      AoStudyRow row = row_of("hegeman-shells");
       row.shells = k;
-      run_row(row, shells_setup("hegeman-shells", k), 0);
+      run.run_row(row, run.hegeman("hegeman-shells", k), 0);
     }
   if (wants(o, "raytraced"))
     for (int rays : row_rays(o)) {
-      AoStudyRow row;
-      row.model = "raytraced";
+      AoStudyRow row = row_of("raytraced");
       row.rays = rays;
-      run_row(row, {}, rays);
+      run.run_row(row, {}, rays);
     }
-  // Last, because it replaces the uploaded normals and ka for good: the Luft preprocessing's
-  // ka is the AO (the realigned normals do not change the AO buffer).
-  if (wants(o, "luft-density")) {
-    AoStudyRow row;
-    row.model = "luft-density";
-    run_row(
-        row,
-        [&] {
-          const FoliageIllumination luft = compute_foliage_illumination(scene, o.luft);
-          rasterizer.set_vertex_shading(vertex_shading(luft, KaEncoding::Attribute));
-          AoShading s;
-          s.model = AoShading::Model::Ka;
-          return s;
-        },
-        0);
-  }
+  if (wants(o, "luft-density")) run.run_row(row_of("luft-density"), run.luft(), 0);
 
   study.rows.push_back(none);
-  for (const std::string& m : kModels)
-    for (AoStudyRow& r : rows[m])
-      study.rows.push_back(std::move(r));
+  for (AoStudyRow& r : run.rows())
+    study.rows.push_back(std::move(r));
   study.rows.push_back(ref_row);
   return study;
 }
