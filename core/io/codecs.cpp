@@ -97,10 +97,11 @@ const CodecsApi& codecs() {
   return *loaded.api;
 }
 
-cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report) {
+cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report,
+                           unsigned long long max_pixels) {
   if (!bytes || size == 0 || size >= size_t(1) << 31) return cv::Mat();
-  if (is_png(bytes, size)) return decode_png(bytes, size, report);
-  if (is_jpeg(bytes, size)) return decode_jpeg(bytes, size, report);
+  if (is_png(bytes, size)) return decode_png(bytes, size, report, max_pixels);
+  if (is_jpeg(bytes, size)) return decode_jpeg(bytes, size, report, max_pixels);
   return cv::Mat();
 }
 

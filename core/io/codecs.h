@@ -24,7 +24,8 @@ const CodecsApi& codecs();
 cv::Mat decode_image(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
 
 // PNG or JPEG only, in process, as glTF 2.0 allows for textures: an empty Mat for any other
-// data. Never loads the plugin.
-cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report);
+// data. Never loads the plugin. `max_pixels` as decode_png and decode_jpeg take it.
+cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report,
+                           unsigned long long max_pixels = 1ull << 30);
 
 }  // namespace sylva

@@ -57,8 +57,17 @@ void cmyk_to_bgr(const cv::Mat& cmyk, cv::Mat& bgr) {
 
 // Reads the header, then the pixels into `image`; false when libjpeg fails or the image is
 // beyond the limits. The caller owns `image` and `rows` so that a longjmp skips no destructor.
+// The scale 1/d (d = 1, 2, 4 or 8) at which the image fits `max_pixels`, or 0 when none does.
+unsigned fitting_scale(JDIMENSION width, JDIMENSION height, unsigned long long max_pixels) {
+  for (unsigned d = 1; d <= 8; d *= 2)
+    if (static_cast<unsigned long long>((width + d - 1) / d) * ((height + d - 1) / d) <= max_pixels)
+      return d;
+  return 0;
+}
+
 bool read_jpeg(jpeg_decompress_struct& info, ErrorManager& errors, const unsigned char* bytes,
-               size_t size, cv::Mat& image, std::vector<JSAMPROW>& rows) {
+               size_t size, unsigned long long max_pixels, cv::Mat& image,
+               std::vector<JSAMPROW>& rows) {
   if (setjmp(errors.jump)) return false;
   jpeg_create_decompress(&info);
   jpeg_mem_src(&info, bytes, static_cast<unsigned long>(size));
@@ -68,6 +77,19 @@ bool read_jpeg(jpeg_decompress_struct& info, ErrorManager& errors, const unsigne
       static_cast<unsigned long long>(info.image_width) * info.image_height > kMaxPixels) {
     errors.report->error = "image size beyond 2^20 a side or 2^30 pixels";
     return false;
+  }
+  const std::string dims =
+      std::to_string(info.image_width) + "x" + std::to_string(info.image_height);
+  const unsigned d = fitting_scale(info.image_width, info.image_height, max_pixels);
+  if (d == 0) {
+    errors.report->error = dims + " is beyond 64 x " + std::to_string(max_pixels) + " pixels";
+    return false;
+  }
+  if (d > 1) {
+    info.scale_num = 1;
+    info.scale_denom = d;
+    errors.report->warn(dims + " is beyond " + std::to_string(max_pixels) +
+                        " pixels: decoded at 1/" + std::to_string(d) + " of its size");
   }
   const bool cmyk = info.num_components == 4;
   const bool grey = info.num_components == 1;
@@ -90,7 +112,8 @@ bool is_jpeg(const unsigned char* bytes, size_t size) {
   return bytes && size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
 }
 
-cv::Mat decode_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report) {
+cv::Mat decode_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report,
+                    unsigned long long max_pixels) {
   DecodeReport ignored;
   ErrorManager errors{};
   errors.report = report ? report : &ignored;
@@ -102,7 +125,7 @@ cv::Mat decode_jpeg(const unsigned char* bytes, size_t size, DecodeReport* repor
   std::vector<JSAMPROW> rows;
   bool ok = false;
   if (is_jpeg(bytes, size)) {
-    ok = read_jpeg(info, errors, bytes, size, image, rows);
+    ok = read_jpeg(info, errors, bytes, size, max_pixels, image, rows);
     jpeg_destroy_decompress(&info);  // safe after a failed create: it checks info.mem
   }
   if (!ok) return cv::Mat();

@@ -16,7 +16,10 @@ bool is_jpeg(const unsigned char* bytes, size_t size);
 // What cv::imdecode(bytes, cv::IMREAD_UNCHANGED) gives for a JPEG in OpenCV 4.6: 8-bit, grey as 1
 // channel, colour as BGR, no EXIF rotation; CMYK (Adobe's inverted form) converted to BGR. An
 // empty Mat, with the reason in `report`, for data libjpeg cannot read or an image beyond
-// OpenCV's limits (2^20 a side, 2^30 pixels).
-cv::Mat decode_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
+// OpenCV's limits (2^20 a side, 2^30 pixels). An image of more than `max_pixels` is decoded at
+// 1/2, 1/4 or 1/8 of its size (libjpeg's DCT scaling, the largest that fits), with a warning;
+// beyond 64 x max_pixels it is an error.
+cv::Mat decode_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr,
+                    unsigned long long max_pixels = 1ull << 30);
 
 }  // namespace sylva

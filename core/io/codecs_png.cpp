@@ -9,6 +9,7 @@
 
 #include <bit>
 #include <cstring>
+#include <string>
 #include <vector>
 
 namespace sylva {
@@ -54,8 +55,8 @@ constexpr unsigned long long kMaxPixels = 1ull << 30;
 // Reads the header, then the pixels into `image`. The caller owns `image` and `rows` so that a
 // longjmp out of libpng skips no destructor. False when libpng fails or the image is beyond
 // the limits.
-bool read_png(png_structp png, png_infop info, png_infop end_info, cv::Mat& image,
-              std::vector<png_bytep>& rows) {
+bool read_png(png_structp png, png_infop info, png_infop end_info, unsigned long long max_pixels,
+              cv::Mat& image, std::vector<png_bytep>& rows) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_read_info(png, info);
   png_uint_32 width = 0, height = 0;
@@ -65,6 +66,12 @@ bool read_png(png_structp png, png_infop info, png_infop end_info, cv::Mat& imag
       static_cast<unsigned long long>(width) * height > kMaxPixels) {
     if (auto* report = static_cast<DecodeReport*>(png_get_error_ptr(png)))
       report->error = "image size beyond 2^20 a side or 2^30 pixels";
+    return false;
+  }
+  if (static_cast<unsigned long long>(width) * height > max_pixels) {
+    if (auto* report = static_cast<DecodeReport*>(png_get_error_ptr(png)))
+      report->error = std::to_string(width) + "x" + std::to_string(height) + " is beyond " +
+                      std::to_string(max_pixels) + " pixels";
     return false;
   }
   int channels = 1;
@@ -150,7 +157,8 @@ bool is_png(const unsigned char* bytes, size_t size) {
   return bytes && size >= 8 && png_sig_cmp(bytes, 0, 8) == 0;
 }
 
-cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report) {
+cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report,
+                   unsigned long long max_pixels) {
   if (!is_png(bytes, size)) return cv::Mat();
   png_structp png =
       png_create_read_struct(PNG_LIBPNG_VER_STRING, report, png_on_error, png_on_warning);
@@ -163,7 +171,7 @@ cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report
   if (info && end_info) {
     ReadCursor in{bytes, size, 0};
     png_set_read_fn(png, &in, png_read_bytes);
-    ok = read_png(png, info, end_info, image, rows);
+    ok = read_png(png, info, end_info, max_pixels, image, rows);
   }
   png_destroy_read_struct(&png, &info, &end_info);
   if (!ok) image.release();

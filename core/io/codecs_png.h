@@ -33,8 +33,9 @@ bool is_png(const unsigned char* bytes, size_t size);
 // What cv::imdecode(bytes, cv::IMREAD_UNCHANGED) gives for a PNG in OpenCV 4.6: 16-bit kept;
 // grey (1-, 2-, 4-bit expanded) as 1 channel; grey+alpha as BGRA; RGB and palette as BGR, or
 // BGRA when a tRNS chunk is present. An empty Mat for data libpng cannot read or an image
-// beyond OpenCV's limits (2^20 a side, 2^30 pixels); libpng's reason and warnings go to `report`
-// (never to stderr).
-cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr);
+// beyond OpenCV's limits (2^20 a side, 2^30 pixels) or `max_pixels`; libpng's reason and
+// warnings go to `report` (never to stderr).
+cv::Mat decode_png(const unsigned char* bytes, size_t size, DecodeReport* report = nullptr,
+                   unsigned long long max_pixels = 1ull << 30);
 
 }  // namespace sylva

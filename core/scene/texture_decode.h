@@ -16,6 +16,11 @@
 
 namespace sylva {
 
+// At most 2^26 pixels (8192 x 8192) in a decoded texture: a 16-byte-per-pixel peak stays near
+// 1 GiB, while a PNG header or a JPEG of a few hundred bytes may declare 2^30 pixels. A larger
+// JPEG is decoded at 1/2, 1/4 or 1/8 of its size with a warning; a larger PNG is an error.
+inline constexpr unsigned long long kMaxTexturePixels = 1ull << 26;
+
 // `path` is the scene file and `what` names the image in error messages.
 inline Texture decode_texture(const unsigned char* bytes, size_t size, const std::string& name,
                               const std::string& path, const std::string& what,
@@ -24,7 +29,7 @@ inline Texture decode_texture(const unsigned char* bytes, size_t size, const std
   DecodeReport report;
   if (bytes && size > 0 && size < size_t(1) << 31) {
     try {
-      m = decode_png_or_jpeg(bytes, size, &report);
+      m = decode_png_or_jpeg(bytes, size, &report, kMaxTexturePixels);
     } catch (const cv::Exception&) {
       m = cv::Mat();
     }

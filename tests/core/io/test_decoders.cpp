@@ -127,5 +127,41 @@ TEST(Decoders, DamagedPngIsReportedNotPrinted) {
   EXPECT_EQ(phys.warnings[0], "pHYs: CRC error");
 }
 
+// A JPEG of more pixels than the bound is decoded at the largest of 1/2, 1/4, 1/8 that fits, with
+// a warning; one that even 1/8 does not fit is an error. The 542-byte JPEG the texture fuzz
+// harness found declares 20036 x 18757 pixels: at a 2^26 bound it comes out at 1/4, nothing near
+// its 375 M pixels allocated.
+TEST(Decoders, JpegBeyondThePixelBoundIsDecodedSmallerOrRefused) {
+  cv::Mat image(64, 48, CV_8UC3);
+  cv::RNG(7).fill(image, cv::RNG::UNIFORM, 0, 256);
+  const std::string jpeg = encode(".jpg", image);
+  DecodeReport half;
+  EXPECT_EQ(decode_jpeg(data_of(jpeg), jpeg.size(), &half, 64 * 48 / 4).size(), cv::Size(24, 32));
+  ASSERT_EQ(half.warnings.size(), 1u);
+  EXPECT_EQ(half.warnings[0], "48x64 is beyond 768 pixels: decoded at 1/2 of its size");
+  DecodeReport eighth;
+  EXPECT_EQ(decode_jpeg(data_of(jpeg), jpeg.size(), &eighth, 48).size(), cv::Size(6, 8));
+  DecodeReport refused;
+  EXPECT_TRUE(decode_jpeg(data_of(jpeg), jpeg.size(), &refused, 47).empty());
+  EXPECT_EQ(refused.error, "48x64 is beyond 64 x 47 pixels");
+
+  const std::string found =
+      read_file(source_dir() + "/tests/fuzz/regressions/texture/oom-20036x18757-jpeg-in-542-bytes");
+  DecodeReport report;
+  EXPECT_EQ(decode_jpeg(data_of(found), found.size(), &report, 1ull << 26).size(),
+            cv::Size(5009, 4690));
+  EXPECT_EQ(report.warnings.size(), 1u);  // libjpeg's "Corrupt JPEG data" came first
+}
+
+// A PNG whose header declares more pixels than the bound is refused before its pixels are read.
+TEST(Decoders, PngBeyondThePixelBoundIsRefused) {
+  std::string png;
+  ASSERT_TRUE(encode_png(cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)), kOpenCvPng, png));
+  DecodeReport within, beyond;
+  EXPECT_FALSE(decode_png(data_of(png), png.size(), &within, 16).empty());
+  EXPECT_TRUE(decode_png(data_of(png), png.size(), &beyond, 15).empty());
+  EXPECT_EQ(beyond.error, "4x4 is beyond 15 pixels");
+}
+
 }  // namespace
 }  // namespace sylva::test
