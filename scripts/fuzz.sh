@@ -111,7 +111,10 @@ done
 if [ -n "$failed" ]; then
   for h in $failed; do
     echo "fuzz: $h found a problem ($build/logs/$h.log):" >&2
-    grep -E 'ERROR|SUMMARY|broken invariant|Test unit written' "$build/logs/$h.log" | head -5 >&2
+    # -m: no pipe to head, whose early exit ended the script (pipefail) before this report did;
+    # libFuzzer's and the sanitizers' own lines only (OpenCV logs "[ERROR:0@...]" lines too).
+    grep -m 5 -E '^==[0-9]+== ?ERROR|^SUMMARY|broken invariant|Test unit written' \
+      "$build/logs/$h.log" >&2 || true
   done
   exit 1
 fi
