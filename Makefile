@@ -5,7 +5,7 @@ ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build test demo sanitize fuzz perf golden format clean
+.PHONY: all setup build test demo sanitize fuzz perf golden docs format clean
 
 all: build
 
@@ -46,6 +46,11 @@ perf: build
 # Rewrites tests/golden/*.png from the current renderer (look at them before committing).
 golden: build
 	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/cli/test_cli --gtest_filter='Golden*'
+
+# Rewrites the README's generated tables (options and style parameters) from their
+# declarations; the docs.readme test fails when they are stale.
+docs: build
+	$(BUILD)/cli/sylva_docs README.md
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

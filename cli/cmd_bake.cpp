@@ -57,23 +57,30 @@ std::string baked_note(const FoliageParams& p, const FoliageStats& s) {
 Action add_bake_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
-    IlluminationOptions illumination;
+    FoliageRunOptions foliage;
     std::string out;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand(
       "bake", "Bake the foliage illumination (realigned normals, ambient coefficient) into a .glb");
   add_scene_options(*cmd, o->scene);
-  add_illumination_options(*cmd, o->illumination, /*with_ka_encoding=*/false);
+  // ka is written both ways (NORMAL unit, _AMBIENT and COLOR_0), so no --ka-encoding.
+  add_illumination_options(*cmd, &o->foliage, {"foliage.ka_encoding"});
   cmd->add_option("-o,--output", o->out,
                   "Output scene (.glb): NORMAL, COLOR_0 = ka and _AMBIENT = ka per vertex")
       ->required();
-  return [o] {
+  return [o, cmd] {
     check_output_path("--output", o->out, {".glb"});
-    if (o->illumination.surface_out == o->out)
+    if (o->foliage.surface_out == o->out)
       throw InputError("--surface-out", "must differ from --output '" + o->out + "'");
+    FoliageSettings settings;
+    ParamSet set;
+    bind_foliage_params(set, settings);
+    apply_foliage_options(*cmd, set);
+    const FoliageRun run = foliage_run(o->foliage);
     const Scene scene = load_scene_for_cli(o->scene);
-    IlluminationSetup setup = illumination_setup(o->illumination, o->scene.seed, scene);
+    IlluminationSetup setup = foliage_setup(settings, run, o->scene.seed, scene);
+    setup.parameter_names = foliage_parameter_names(set);
     setup.encoding = KaEncoding::Attribute;  // unit normals and ka apart, as the file wants
     auto stats = std::make_shared<FoliageStats>();
     setup.on_done = [stats, report = setup.on_done](const FoliageStats& s) {

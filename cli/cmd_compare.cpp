@@ -16,7 +16,7 @@ Action add_compare_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
-    IlluminationOptions illumination;
+    FoliageRunOptions foliage;
     std::vector<std::string> styles;
     std::string style;
     std::vector<std::string> sets, sweeps;
@@ -33,7 +33,7 @@ Action add_compare_command(CLI::App& app) {
       "labelled contact sheet; buffers and preprocessing are shared between the cells");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
-  add_illumination_options(*cmd, o->illumination);
+  add_illumination_options(*cmd, &o->foliage);
   CLI::Option* styles =
       cmd->add_option("--styles", o->styles,
                       "Comma-separated built-in styles and preset files (.toml); default: every "
@@ -64,23 +64,16 @@ Action add_compare_command(CLI::App& app) {
     if (!o->style.empty()) names = {o->style};
     if (names.empty()) names = builtin_preset_names();
     const std::vector<SheetEntry> entries = expand_sheet(names, o->sets, o->sweeps);
-    const auto built = build_sheet_styles(
-        entries, [&](ParamSet& set) { apply_explicit_illumination_options(*cmd, set); });
+    const auto built = build_sheet_styles(entries, given_foliage_options(*cmd));
+    const FoliageRun run = foliage_run(o->foliage, o->quiet);
     std::vector<const Style*> list;
     for (const auto& s : built)
       list.push_back(s.get());
 
     auto frame = prepare_frame(o->scene, o->view);
     RenderGraph graph;
-    SheetScene scene = sheet_scene(*frame, o->illumination, o->scene.seed);
-    if (o->quiet)
-      scene.foliage = [f = scene.foliage](const FoliageSettings& settings) {
-        IlluminationSetup s = f(settings);
-        s.on_done = nullptr;
-        return s;
-      };
-    const SheetPlan plan = add_sheet_passes(graph, list, scene);
-    if (!o->illumination.surface_out.empty() && plan.foliage_passes > 1)
+    const SheetPlan plan = add_sheet_passes(graph, list, sheet_scene(*frame, run, o->scene.seed));
+    if (!run.surface_out.empty() && plan.foliage_passes > 1)
       throw InputError("--surface-out", "the sheet computes " +
                                             std::to_string(plan.foliage_passes) +
                                             " implicit surfaces; write one with sylva render");

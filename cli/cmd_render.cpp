@@ -47,10 +47,9 @@ namespace {
 // The raster pass, fed by the Luft preprocessing node when `mode` asks for it; the node is
 // always declared, so compile() is what culls it for the original normals.
 // With ao.model other than none, the AO shell node feeds it too (not declared otherwise).
-GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, const IlluminationOptions& io,
+GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, IlluminationSetup luft,
                                 uint64_t seed, NormalMode mode, const AoSettings& ao) {
-  const int shading =
-      add_foliage_illumination_pass(graph, illumination_setup(io, seed, frame.scene));
+  const int shading = add_foliage_illumination_pass(graph, std::move(luft));
   RasterSetup setup = frame.setup;
   if (mode != NormalMode::Original) setup.shading = shading;
   if (ao_model_of(ao.model) != AoShading::Model::None) {
@@ -92,7 +91,7 @@ Action add_render_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
-    IlluminationOptions illumination;
+    FoliageRunOptions foliage;
     std::string style = "standard";
     std::vector<std::string> sets;
     std::string out, graph;
@@ -103,7 +102,7 @@ Action add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene in a style to an image");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
-  add_illumination_options(*cmd, o->illumination);
+  add_illumination_options(*cmd, &o->foliage);
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
   cmd->add_option("-o,--output", o->out,
@@ -120,7 +119,8 @@ Action add_render_command(CLI::App& app) {
                   "for .tiff. 16 holds the styles' 8-bit values widened (x 257)")
       ->capture_default_str();
   return [o, cmd] {
-    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
+    const FoliageRun run = foliage_run(o->foliage);
     check_output_path("--output", o->out,
                       {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".exr", ".svg", ".pdf"});
     const int bit_depth = resolve_bit_depth(o->bit_depth, o->out);
@@ -130,8 +130,8 @@ Action add_render_command(CLI::App& app) {
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view);
     RenderGraph graph;
-    const SheetPlan plan = add_sheet_passes(
-        graph, {style.get()}, sheet_scene(*frame, o->illumination, o->scene.seed), vector);
+    const SheetPlan plan =
+        add_sheet_passes(graph, {style.get()}, sheet_scene(*frame, run, o->scene.seed), vector);
     graph.compile();
     write_graph(o->graph, graph);
     graph.execute();
@@ -150,7 +150,7 @@ Action add_buffers_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     ViewOptions view;
-    IlluminationOptions illumination;
+    FoliageRunOptions foliage;
     std::string normals = "original";
     std::string style = "standard";
     std::vector<std::string> sets;
@@ -163,7 +163,7 @@ Action add_buffers_command(CLI::App& app) {
       "Write the G-buffers (lossless TIFF/PNG and 8-bit previews, or one OpenEXR) and camera.json");
   add_scene_options(*cmd, o->scene);
   add_view_options(*cmd, o->view);
-  add_illumination_options(*cmd, o->illumination);
+  add_illumination_options(*cmd, &o->foliage);
   CLI::Option* normals =
       cmd->add_option("--normals", o->normals,
                       "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
@@ -213,17 +213,21 @@ Action add_buffers_command(CLI::App& app) {
     if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
       throw InputError("--out-dir", "'" + o->dir + "': parent folder does not exist");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
-    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
+    const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
+    const FoliageRun run = foliage_run(o->foliage);
     const NormalMode mode =
         normals->count() > 0 ? parse_normal_mode(o->normals, "--normals") : style->normals();
     auto frame = prepare_frame(o->scene, o->view);
-    frame->setup.request.flat_albedo = style->params().albedo == "flat";  // ids follow --id
-    // The style's picture-scale rho (ink.detail), as its render would use.
-    o->illumination.picture_rho =
-        style->foliage_settings(frame->setup.camera, frame->scene.framing_sphere()).picture_rho;
+    frame->setup.request.flat_albedo =
+        style->params().albedo == AlbedoSource::Flat;  // ids follow --id
+    // With the style's picture-scale rho (ink.detail), as its render would use.
+    IlluminationSetup luft =
+        foliage_setup(style->foliage_settings(frame->setup.camera, frame->scene.framing_sphere()),
+                      run, o->scene.seed, frame->scene);
+    luft.parameter_names = foliage_parameter_names(style->set());
     RenderGraph graph;
     GBufferHandles gb =
-        add_scene_passes(graph, *frame, o->illumination, o->scene.seed, mode, style->params().ao);
+        add_scene_passes(graph, *frame, std::move(luft), o->scene.seed, mode, style->params().ao);
     for (Target t : kAllTargets)
       if (has(wanted, t)) graph.present(gb.of(t));
     graph.compile();

@@ -8,35 +8,6 @@
 
 namespace sylva::cli {
 
-namespace {
-
-std::string allowed(const ParamSpec& s) {
-  switch (s.type) {
-    case ParamType::Float:
-    case ParamType::Int: {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%g, %g]%s%s", s.min_open ? "(" : "[", s.min, s.max,
-                    s.unit.empty() ? "" : " ", s.unit.c_str());
-      return buf;
-    }
-    case ParamType::Bool:
-      return "true | false";
-    case ParamType::Color:
-      return "\"#RRGGBB\"";
-    case ParamType::Choice: {
-      std::string c;
-      for (const std::string& x : s.choices)
-        c += (c.empty() ? "" : " | ") + x;
-      return c;
-    }
-    case ParamType::Text:
-      return s.forms;
-  }
-  return "";
-}
-
-}  // namespace
-
 Action add_styles_command(CLI::App& app) {
   auto name = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
@@ -65,7 +36,7 @@ Action add_styles_command(CLI::App& app) {
     std::printf("%-24s %-12s %-12s %-40s %s\n", "key", "value", "default", "allowed", "meaning");
     for (const ParamSpec& p : s.set().specs())
       std::printf("%-24s %-12s %-12s %-40s %s\n", p.key.c_str(), s.set().value_text(p.key).c_str(),
-                  p.default_text.c_str(), allowed(p).c_str(), p.doc.c_str());
+                  p.default_text.c_str(), allowed_text(p).c_str(), p.doc.c_str());
   };
 }
 

@@ -130,7 +130,6 @@ void print_table(const FoliageStudy& study, const std::vector<KaEncoding>& encod
 Action add_tradeoff_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
-    IlluminationOptions illumination;
     std::string study, out, plot;
     std::string fractions = "1,0.5,0.25,0.1,0.05,0.01";
     std::string grids = "32,64,128,256";
@@ -154,10 +153,9 @@ Action add_tradeoff_command(CLI::App& app) {
   add_scene_options(*cmd, o->scene);
   // The Luft options that stay fixed over the sweep; fraction, grid, normal source and
   // encoding are the sweep's own lists below, and every run is computed, never cached.
-  add_illumination_options(*cmd, o->illumination);
-  for (const char* name : {"--fraction", "--grid", "--normal-source", "--ka-encoding",
-                           "--surface-out", "--no-cache", "--cache-dir"})
-    if (CLI::Option* opt = cmd->get_option_no_throw(name)) cmd->remove_option(opt);
+  add_illumination_options(
+      *cmd, nullptr,
+      {"foliage.fraction", "foliage.grid", "foliage.normal_source", "foliage.ka_encoding"});
   cmd->add_option("--study", o->study, std::string("What to study: ") + kStudies)->required();
   cmd->add_option("-o,--output", o->out, "Output table (.csv)")->required();
   cmd->add_option("--plot", o->plot, "Also draw error against time (.png)");
@@ -205,9 +203,9 @@ Action add_tradeoff_command(CLI::App& app) {
           reject_options({opt}, o->study);
       for (const char* name : {"--every", "--degrees", "--style"})
         reject_options({cmd->get_option(name)}, o->study + " (use --styles and --step)");
-      run_coherence_study_command(o->scene, o->coherence, o->keyframes,
-                                  cmd->get_option("--frames")->count() > 0, o->ao.view,
-                                  o->illumination, o->sets, {o->out, o->plot, o->quiet});
+      run_coherence_study_command(
+          o->scene, o->coherence, o->keyframes, cmd->get_option("--frames")->count() > 0,
+          o->ao.view, given_foliage_options(*cmd), o->sets, {o->out, o->plot, o->quiet});
       return;
     }
     if (o->study == "keyframes") {
@@ -218,26 +216,24 @@ Action add_tradeoff_command(CLI::App& app) {
           reject_options({opt}, o->study);
       // A blobs style unless --style names another (which is then rejected).
       if (cmd->get_option("--style")->count() == 0) o->style = "blobs";
-      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
-      run_keyframe_study_command(o->scene, o->keyframes, o->ao.view, o->illumination, *style,
+      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
+      run_keyframe_study_command(o->scene, o->keyframes, o->ao.view, *style,
                                  {o->out, o->plot, o->quiet});
       return;
     }
     reject_options(o->keyframes.options, o->study);
     if (o->study == "ao") {
       reject_options(o->foliage_only, o->study);
-      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
-      run_ao_study_command(o->scene, o->ao, o->illumination, *style, {o->out, o->plot, o->quiet});
+      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
+      run_ao_study_command(o->scene, o->ao, *style, {o->out, o->plot, o->quiet});
       return;
     }
     reject_options(o->ao.options, o->study);
 
-    // Every option is checked before the scene is loaded. illumination_setup only keeps a
-    // pointer to the scene, so an empty one serves for parsing.
-    const Scene no_scene;
-    resolve_style(*cmd, o->style, o->sets, o->illumination);
+    // Every option is checked before the scene is loaded.
     FoliageStudyOptions so;
-    so.base = illumination_setup(o->illumination, o->scene.seed, no_scene).params;
+    so.base =
+        foliage_params(resolve_style(*cmd, o->style, o->sets)->params().foliage, o->scene.seed);
     so.fractions = parse_numbers<double>(o->fractions, "--fractions");
     so.grids = parse_numbers<int>(o->grids, "--grids");
     so.normals = parse_normal_sources(o->normal_sources);

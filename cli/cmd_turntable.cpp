@@ -83,8 +83,7 @@ class FrameSink {
       try {
         write_styled_image((fs::path(m_frames) / frame_file_name(i)).string(), f.image, 0.0);
       } catch (const InputError& e) {  // named after the video, not its hidden frame folder
-        const std::string what = e.what();
-        throw InputError(m_o.out, what.substr(std::min(what.size(), e.where().size() + 2)));
+        throw InputError(m_o.out, e.reason());
       }
     }
   }
@@ -154,7 +153,7 @@ void run_turntable(const CLI::App& cmd, TurntableOptions& o) {
   const TurntableChecks c = check_turntable_options(cmd, o);
   const Style& style = *c.style;
   auto frame = prepare_frame(o.scene, o.view);
-  SheetScene scene = sheet_scene(*frame, o.illumination, o.scene.seed);
+  SheetScene scene = sheet_scene(*frame, foliage_run(o.foliage), o.scene.seed);
   memoize_preprocessing(scene, o.quiet);
   const Camera base = frame->setup.camera;
   TurntableRenderer renderer(

@@ -13,16 +13,26 @@
 namespace sylva::cli {
 
 void add_scene_options(CLI::App& cmd, SceneOptions& o) {
-  cmd.add_option("scene", o.path, "Scene file: .glb, .gltf, .obj, .ply, .off or .stl")->required();
+  cmd.add_option("scene", o.path,
+                 "Scene file: .glb, .gltf (tinygltf), .obj (tinyobjloader), .ply (ASCII and "
+                 "binary), .off (ASCII) or .stl (ASCII and binary)")
+      ->required()
+      ->group(kSceneGroup);
   cmd.add_option("--foliage", o.foliage,
-                 "Which triangles are leaves: auto (names leaf/leaves/foliage/needle, else "
-                 "alpha-MASK materials), none, all, or a glob on material/mesh names")
-      ->capture_default_str();
+                 "Which triangles are leaves: auto (material or mesh names containing "
+                 "leaf/leaves/foliage/needle, else alpha-MASK materials), none, all, or a "
+                 "case-insensitive glob on material/mesh names")
+      ->capture_default_str()
+      ->group(kSceneGroup);
   cmd.add_option("--clusters", o.clusters,
-                 "Wanted leaf clusters (k-means k, or the target count for the hierarchy's "
-                 "division diameter); 0 = auto, about sqrt(leaves/2) capped at 64; [0, 4096]")
-      ->capture_default_str();
-  cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means)")->capture_default_str();
+                 "Wanted leaf clusters: k of k-means on leaf centroids, or, for a model with a "
+                 "hierarchy, the count the division diameter is chosen to come closest to; 0 = "
+                 "auto, about sqrt(leaves / 2) capped at 64; [0, 4096]")
+      ->capture_default_str()
+      ->group(kSceneGroup);
+  cmd.add_option("--seed", o.seed, "Seed for every random choice (k-means, ...)")
+      ->capture_default_str()
+      ->group(kSceneGroup);
 }
 
 Scene load_scene_for_cli(const SceneOptions& o, bool print_warnings) {
@@ -40,34 +50,42 @@ Scene load_scene_for_cli(const SceneOptions& o, bool print_warnings) {
 }
 
 void add_view_options(CLI::App& cmd, ViewOptions& o) {
-  cmd.add_option("--size", o.size, "Image size in pixels, WxH or N, each in [1, 16384]")
-      ->capture_default_str();
-  cmd.add_option("--azimuth", o.orbit.azimuth_deg,
-                 "Camera azimuth in degrees, counter-clockwise about +Y seen from above; 0 = "
-                 "on the +Z side")
-      ->capture_default_str();
-  cmd.add_option("--elevation", o.orbit.elevation_deg, "Camera elevation in degrees, [-89, 89]")
-      ->capture_default_str();
-  cmd.add_option("--distance", o.orbit.distance,
-                 "Camera distance from the bounds centre in scene units; 0 = fit the scene")
-      ->capture_default_str();
-  cmd.add_option("--fov", o.orbit.fov_deg, "Vertical field of view in degrees, [1, 150]")
-      ->capture_default_str();
-  cmd.add_flag("--ortho", o.orbit.ortho, "Orthographic projection");
-  cmd.add_option("--ssaa", o.ssaa, "Supersampling factor per axis, [1, 4]")->capture_default_str();
-  cmd.add_option("--background", o.background, "white, black, transparent or #RRGGBB")
-      ->capture_default_str();
-  cmd.add_option("--ambient", o.ambient, "Ambient light intensity, [0, 1]")->capture_default_str();
+  auto add = [&](const std::string& name, auto& value, const std::string& help) {
+    cmd.add_option(name, value, help)->capture_default_str()->group(kViewGroup);
+  };
+  add("--size", o.size, "Image size in pixels, WxH or N, each in [1, 16384]");
+  add("--azimuth", o.orbit.azimuth_deg,
+      "Camera azimuth in degrees, counter-clockwise about +Y seen from above; 0 puts the camera "
+      "on the +Z side looking toward -Z");
+  add("--elevation", o.orbit.elevation_deg,
+      "Camera elevation in degrees (raises it toward +Y), [-89, 89]");
+  add("--distance", o.orbit.distance,
+      "Camera distance from the bounds centre in scene units, >= 0; 0 fits the scene's bounding "
+      "sphere (centred on the bounds, through the farthest vertex) in view, so the framing does "
+      "not change as the camera turns");
+  add("--fov", o.orbit.fov_deg, "Vertical field of view in degrees, [1, 150]");
+  cmd.add_flag("--ortho", o.orbit.ortho, "Orthographic projection")->group(kViewGroup);
+  add("--ssaa", o.ssaa,
+      "Supersampling factor per axis, [1, 4] (colour, normal, depth, position and ka averaged; "
+      "ids nearest)");
+  add("--background", o.background, "white, black, transparent or #RRGGBB");
+  add("--ambient", o.ambient,
+      "Ambient light intensity, multiplied by the ambient coefficient "
+      "ka, [0, 1]");
   cmd.add_flag("--ground", o.ground,
-               "Add a ground plane under the scene's lowest point (a disc 30 framing radii "
-               "in radius, its edge near the horizon); it receives the crown's occlusion with "
-               "ao.model=hegeman-*");
-  cmd.add_option("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB")
-      ->capture_default_str();
+               "Add a ground plane at the scene's lowest point, centred under the plant: a disc "
+               "30 framing radii in radius (its edge near the horizon), double-sided (role "
+               "ground), ignored by the framing; with ao.model=hegeman-* it receives the crown's "
+               "occlusion and hides part of the sky of the wood above it")
+      ->group(kViewGroup);
+  add("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB (sRGB)");
   cmd.add_option("--light", o.lights,
-                 "A light, repeatable up to 8, replacing the default three: "
-                 "dir|point:X,Y,Z[:INTENSITY[:camera|scene]] (direction toward the light or "
-                 "position; camera = view space)");
+                 "A light, repeatable up to 8, replacing the default three-light set-up (key, "
+                 "fill and rim, fixed to the camera): dir|point:X,Y,Z[:INTENSITY[:camera|scene]] "
+                 "- the direction toward a directional light or a point light's position, in "
+                 "view space (camera, the default) or world space (scene); intensity in [0, 10], "
+                 "default 1")
+      ->group(kViewGroup);
 }
 
 void parse_size(const std::string& s, int& width, int& height) {

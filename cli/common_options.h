@@ -13,6 +13,14 @@
 
 namespace sylva::cli {
 
+// The option groups several commands share (their --help headings and the README's tables,
+// cli/docs.h).
+inline constexpr const char* kSceneGroup = "Scene options";
+inline constexpr const char* kViewGroup = "View options";
+inline constexpr const char* kFoliageGroup = "Foliage illumination options";
+inline constexpr const char* kStyleGroup = "Style options";
+inline constexpr const char* kTurntableGroup = "Turntable options";
+
 struct SceneOptions {
   std::string path;
   std::string foliage = "auto";

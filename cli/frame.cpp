@@ -39,42 +39,22 @@ void release_frame(std::unique_ptr<Frame>& frame) {
 
 void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets) {
   cmd.add_option("--style", style, "A built-in style (sylva styles) or a preset file .toml")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kStyleGroup);
   cmd.add_option("--set", sets,
-                 "Override a style parameter: section.key=value (repeatable; see sylva styles)");
+                 "Override a style parameter: section.key=value (repeatable; see sylva styles)")
+      ->group(kStyleGroup);
 }
 
 std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& name,
-                                     const std::vector<std::string>& sets,
-                                     IlluminationOptions& io) {
+                                     const std::vector<std::string>& sets) {
   auto style = std::make_unique<Style>(name, sets);
-  apply_explicit_illumination_options(cmd, style->set());
-  const IlluminationOptions run = io;
-  io = style->params().foliage;
-  io.surface_out = run.surface_out;
-  io.no_cache = run.no_cache;
-  io.cache_dir = run.cache_dir;
+  apply_foliage_options(cmd, style->set());
   return style;
 }
 
-SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint64_t seed) {
-  SheetScene s;
-  s.raster = frame.setup;
-  s.foliage_diagonal = frame.scene.bounds(Role::Foliage).diagonal();
-  s.scene_sphere = frame.scene.framing_sphere();
-  s.branch_cluster = frame.scene.branch_cluster_id();
-  s.has_foliage = !frame.scene.bounds(Role::Foliage).empty();
-  const Scene* scene = &frame.scene;
-  s.scene = scene;
-  s.seed = seed;
-  s.foliage = [run, seed, scene](const FoliageSettings& settings) {
-    IlluminationOptions io = settings;
-    io.surface_out = run.surface_out;
-    io.no_cache = run.no_cache;
-    io.cache_dir = run.cache_dir;
-    return illumination_setup(io, seed, *scene);
-  };
-  return s;
+SheetScene sheet_scene(const Frame& frame, const FoliageRun& run, uint64_t seed) {
+  return make_sheet_scene(frame.scene, frame.setup, run, seed);
 }
 
 bool is_vector_path(const std::string& path) {

@@ -35,14 +35,13 @@ void release_frame(std::unique_ptr<Frame>& frame);
 void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets);
 
 // The style named by --style with the --set overrides and the foliage options given
-// explicitly on the command line applied (in that order); `io` receives the resulting foliage
-// settings with the run-only ones (--surface-out, cache) kept.
+// explicitly on the command line applied (in that order).
 std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& name,
-                                     const std::vector<std::string>& sets, IlluminationOptions& io);
+                                     const std::vector<std::string>& sets);
 
-// The frame as a contact sheet's shared scene; `run` supplies the run-only foliage options
-// (cache, --surface-out) and the seed comes from the scene options.
-SheetScene sheet_scene(const Frame& frame, const IlluminationOptions& run, uint64_t seed);
+// The frame as a contact sheet's shared scene (make_sheet_scene); `run` is the preprocessing's
+// cache and outputs and the seed comes from the scene options.
+SheetScene sheet_scene(const Frame& frame, const FoliageRun& run, uint64_t seed);
 
 // Writes a style's BGRA image as .png or .tiff (with alpha), .jpg (alpha dropped) or .exr
 // (linear half R, G, B premultiplied, A), atomically; `dpi` > 0 goes into a PNG's pHYs, a

@@ -1,26 +1,36 @@
-// Options of the Luft preprocessing (render, buffers, bake, and later tradeoff): --rho,
-// --tau, --fraction, --grid, --blend, --normal-source, --ka-min, --d-min, --exponent,
-// --ka-encoding, --smooth, --decimate, --per-triangle, --surface-out, --no-cache, --cache-dir.
+// Options of the Luft preprocessing (render, buffers, compare, turntable, bake, tradeoff): the
+// foliage.* keys as CLI aliases made from their specs (--rho for `--set foliage.rho=...`,
+// npr/foliage_settings.h), and what a run writes and caches: --surface-out, --no-cache,
+// --cache-dir.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
+#include "core/params.h"
 #include "npr/illumination_pass.h"
 
 namespace sylva::cli {
 
-using IlluminationOptions = FoliageSettings;
-// with_ka_encoding = false leaves out --ka-encoding (for bake, which writes ka both ways).
-void add_illumination_options(CLI::App& cmd, IlluminationOptions& o, bool with_ka_encoding = true);
+struct FoliageRunOptions {
+  std::string surface_out;
+  bool no_cache = false;
+  std::string cache_dir;  // empty = default_cache_dir()
+};
 
-// Copies the options of add_illumination_options given explicitly on `cmd` into `set`
-// (foliage.* keys), so they win over a preset; errors name the option.
-void apply_explicit_illumination_options(const CLI::App& cmd, ParamSet& set);
+// Adds the aliases of the foliage.* keys but those in `skip` (group kFoliageGroup), and, with
+// `run`, --surface-out, --no-cache and --cache-dir.
+void add_illumination_options(CLI::App& cmd, FoliageRunOptions* run,
+                              const std::vector<std::string>& skip = {});
 
-// Parses and range-checks; seed comes from the scene options. Throws InputError naming the
-// option.
-IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed,
-                                     const Scene& scene);
+// The foliage aliases given on `cmd`, as assignments naming the option ("--rho").
+std::vector<ParamAssignment> given_foliage_options(const CLI::App& cmd);
+// Applies them to `set` (after its preset and --set: they win); errors name the option.
+void apply_foliage_options(const CLI::App& cmd, ParamSet& set);
+
+// The run's outputs: the cache folder (none with --no-cache), --surface-out (checked now) and a
+// one-line report of each preprocessing on stderr unless `quiet`.
+FoliageRun foliage_run(const FoliageRunOptions& o, bool quiet = false);
 
 }  // namespace sylva::cli

@@ -7,7 +7,7 @@
 #include <opencv2/core/utils/logger.hpp>
 #include <string>
 
-#include "cli/commands.h"
+#include "cli/app.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 
@@ -16,28 +16,8 @@ int main(int argc, char** argv) {
   // failures reach sylva as exceptions and are reported from there.
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   sylva::install_interrupt_handlers();
-  CLI::App app{
-      "sylva: non-photorealistic illustrations of 3D plants and trees.\n"
-      "Run 'sylva <command> --help' for a command's options."};
-  app.set_version_flag("--version", "sylva 0.1.0");
-  app.require_subcommand(1);
-  std::map<CLI::App*, sylva::cli::Action> actions;
-  auto reg = [&](sylva::cli::Action (*add)(CLI::App&)) {
-    size_t before = app.get_subcommands({}).size();
-    sylva::cli::Action a = add(app);
-    actions[app.get_subcommands({})[before]] = a;
-  };
-  reg(&sylva::cli::add_sample_command);
-  reg(&sylva::cli::add_info_command);
-  reg(&sylva::cli::add_render_command);
-  reg(&sylva::cli::add_buffers_command);
-  reg(&sylva::cli::add_styles_command);
-  reg(&sylva::cli::add_compare_command);
-  reg(&sylva::cli::add_turntable_command);
-  reg(&sylva::cli::add_encode_command);
-  reg(&sylva::cli::add_farm_command);
-  reg(&sylva::cli::add_bake_command);
-  reg(&sylva::cli::add_tradeoff_command);
+  CLI::App app;
+  const std::map<CLI::App*, sylva::cli::Action> actions = sylva::cli::add_commands(app);
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;
     bool known = false;

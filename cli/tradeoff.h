@@ -70,10 +70,8 @@ void add_ao_study_options(CLI::App& cmd, AoStudyCliOptions& o);
 
 // `sylva tradeoff SCENE --study ao`: parses and checks every option, loads the scene, runs
 // the study (progress on stderr), writes the CSV (and the plot) atomically and prints the
-// table. `style` supplies ao.alpha_rho; `illumination` (resolved against it) the Luft
-// preprocessing of luft-density.
-void run_ao_study_command(const SceneOptions& scene, AoStudyCliOptions& o,
-                          const IlluminationOptions& illumination, const Style& style,
+// table. `style` supplies ao.alpha_rho and the Luft preprocessing of luft-density (foliage.*).
+void run_ao_study_command(const SceneOptions& scene, AoStudyCliOptions& o, const Style& style,
                           const TradeoffOutputs& out);
 
 // The options only `--study keyframes` reads (besides the view options of AoStudyCliOptions).
@@ -93,8 +91,7 @@ void add_keyframe_study_options(CLI::App& cmd, KeyframeStudyCliOptions& o);
 // be a blobs style), loads the scene, renders the turntable once per interval (progress on
 // stderr), writes the CSV (and the plot) atomically and prints the table.
 void run_keyframe_study_command(const SceneOptions& scene, const KeyframeStudyCliOptions& o,
-                                ViewOptions& view, IlluminationOptions& illumination,
-                                const Style& style, const TradeoffOutputs& out);
+                                ViewOptions& view, const Style& style, const TradeoffOutputs& out);
 
 // The options only `--study coherence` reads (besides the view options, and --frames, --axis
 // and --zoom of the keyframes study's).
@@ -109,10 +106,11 @@ void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o);
 
 // `sylva tradeoff SCENE --study coherence`: every style of --styles on --frames views --step
 // degrees apart (studies/coherence_study.h), CSV (and plot) written atomically, table printed.
-// `frames` is the keyframes study's --frames when given, else 12.
+// `frames` is the keyframes study's --frames when given, else 12; `foliage` (the foliage
+// options given) and `sets` apply to every style.
 void run_coherence_study_command(const SceneOptions& scene, const CoherenceStudyCliOptions& o,
                                  const KeyframeStudyCliOptions& path, bool frames_given,
-                                 ViewOptions& view, IlluminationOptions& illumination,
+                                 ViewOptions& view, const std::vector<ParamAssignment>& foliage,
                                  const std::vector<std::string>& sets, const TradeoffOutputs& out);
 
 }  // namespace sylva::cli

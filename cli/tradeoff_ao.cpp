@@ -65,8 +65,7 @@ void add_ao_study_options(CLI::App& cmd, AoStudyCliOptions& o) {
 }
 
 void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& o,
-                          const IlluminationOptions& illumination, const Style& style,
-                          const TradeoffOutputs& out) {
+                          const Style& style, const TradeoffOutputs& out) {
   // Every option is checked before the scene is loaded.
   resolve_view_options(o.view);
   AoStudyOptions so;
@@ -77,8 +76,7 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
   so.repeats = o.repeats;
   so.alpha_rho = style.params().ao.alpha_rho;
   so.seed = scene_options.seed;
-  const Scene no_scene;  // illumination_setup only keeps a pointer to the scene
-  so.luft = illumination_setup(illumination, scene_options.seed, no_scene).params;
+  so.luft = foliage_params(style.params().foliage, scene_options.seed);
   try {
     validate_ao_study(so);
   } catch (const InputError& e) {

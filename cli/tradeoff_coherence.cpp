@@ -47,7 +47,7 @@ void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o) {
 void run_coherence_study_command(const SceneOptions& scene_options,
                                  const CoherenceStudyCliOptions& o,
                                  const KeyframeStudyCliOptions& path, bool frames_given,
-                                 ViewOptions& view, IlluminationOptions& illumination,
+                                 ViewOptions& view, const std::vector<ParamAssignment>& foliage,
                                  const std::vector<std::string>& sets, const TradeoffOutputs& out) {
   // Every option is checked before the scene is loaded.
   resolve_view_options(view);
@@ -59,13 +59,13 @@ void run_coherence_study_command(const SceneOptions& scene_options,
   validate_coherence_study(so);
   const std::vector<std::string> names =
       o.styles.empty() ? builtin_preset_names() : split_list(o.styles, "--styles");
-  const auto built = build_sheet_styles(expand_sheet(names, sets, {}), {});
+  const auto built = build_sheet_styles(expand_sheet(names, sets, {}), foliage);
   std::vector<const Style*> styles;
   for (const auto& s : built)
     styles.push_back(s.get());
 
   auto frame = prepare_frame(scene_options, view);
-  const SheetScene scene = sheet_scene(*frame, illumination, scene_options.seed);
+  const SheetScene scene = sheet_scene(*frame, foliage_run({}), scene_options.seed);
   CoherenceStudy study;
   {
     ProgressOptions po;

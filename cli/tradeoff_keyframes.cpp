@@ -48,8 +48,7 @@ void add_keyframe_study_options(CLI::App& cmd, KeyframeStudyCliOptions& o) {
 }
 
 void run_keyframe_study_command(const SceneOptions& scene_options, const KeyframeStudyCliOptions& o,
-                                ViewOptions& view, IlluminationOptions& illumination,
-                                const Style& style, const TradeoffOutputs& out) {
+                                ViewOptions& view, const Style& style, const TradeoffOutputs& out) {
   // Every option is checked before the scene is loaded.
   resolve_view_options(view);
   KeyframeStudyOptions so;
@@ -62,7 +61,7 @@ void run_keyframe_study_command(const SceneOptions& scene_options, const Keyfram
   validate_blob_params(style.params().blobs);
 
   auto frame = prepare_frame(scene_options, view);
-  const SheetScene scene = sheet_scene(*frame, illumination, scene_options.seed);
+  const SheetScene scene = sheet_scene(*frame, foliage_run({}), scene_options.seed);
   KeyframeStudy study;
   {
     ProgressOptions po;

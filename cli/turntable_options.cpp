@@ -15,56 +15,71 @@ namespace sylva::cli {
 namespace {
 
 void add_path_options(CLI::App& cmd, TurntableOptions& o) {
-  cmd.add_option("--frames", o.path.frames, "Number of frames, [1, 100000]")->capture_default_str();
+  cmd.add_option("--frames", o.path.frames, "Number of frames, [1, 100000]")
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--degrees", o.path.degrees,
                  "Rotation over all frames in degrees, [-36000, 36000]; 360 loops seamlessly")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--axis", o.axis, "World axis to turn about: x, y (up) or z")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--zoom", o.path.zoom, "Image magnification, (0, 100]; 1 = framed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--fps", o.fps,
                  "Frames per second of the MP4 or GIF, [1, 240] (a GIF stores whole hundredths of "
                  "a second)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
 }
 
 void add_slice_options(CLI::App& cmd, TurntableOptions& o) {
   cmd.add_option("--frame-range", o.range,
                  "Render frames A to B-1 only (A:B, 0-based; folder output), e.g. for a "
-                 "render farm; the frames equal those of a full run");
+                 "render farm; the frames equal those of a full run")
+      ->group(kTurntableGroup);
   cmd.add_flag("--resume", o.resume,
                "Keep the complete frames already in the output folder (a damaged or partial "
-               "frame, or a killed run's temporary file, is rendered again)");
+               "frame, or a killed run's temporary file, is rendered again)")
+      ->group(kTurntableGroup);
   cmd.add_option("--keyframe-every", o.keyframe_every,
                  "blobs style: shrink-wrap the blobs every n-th frame and interpolate the "
                  "frames between (Dudley §5.1); >= 1, 1 = every frame")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--keyframe-cache", o.keyframe_cache,
                  "blobs style: keep the keyframes' blobs in this folder and reuse them (e.g. "
-                 "across the jobs of a --frame-range split)");
+                 "across the jobs of a --frame-range split)")
+      ->group(kTurntableGroup);
   cmd.add_flag("--keyframes-only", o.keyframes_only,
                "blobs style with --keyframe-cache: only fill the cache with the keyframes the "
-               "--frame-range owns (a farm's first step); no frame is written");
+               "--frame-range owns (a farm's first step); no frame is written")
+      ->group(kTurntableGroup);
 }
 
 void add_output_options(CLI::App& cmd, TurntableOptions& o) {
   cmd.add_option("--report", o.report,
-                 "Write per-frame time and flicker (mean |change| inside the plant, 8-bit "
-                 "levels) to a .csv");
+                 "Write per frame to a .csv its seconds and its coherence with the previous one: "
+                 "flicker, reprojection_error, line_pop (line styles), jitter (blobs)")
+      ->group(kTurntableGroup);
   cmd.add_option("--frame-format", o.frame_format,
                  "Folder output: png, exr (linear half RGBA, premultiplied, for compositing), or "
                  "svg / pdf (the strokes of a line style: ink, pen) for plotters and motion work")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group(kTurntableGroup);
   cmd.add_option("--dpi", o.dpi,
                  "Folder frames: pixels per inch (svg/pdf page size, png pHYs, exr xDensity), "
                  "[0, 10000]")
-      ->capture_default_str();
-  cmd.add_flag("-q,--quiet", o.quiet, "No progress output");
+      ->capture_default_str()
+      ->group(kTurntableGroup);
+  cmd.add_flag("-q,--quiet", o.quiet, "No progress output")->group(kTurntableGroup);
   cmd.add_option("-o,--output", o.out,
                  "Output .mp4, .gif, or a folder for frames frame-00000.png, ... (or .exr/.svg/"
                  ".pdf with --frame-format; a name without extension)")
-      ->required();
+      ->required()
+      ->group(kTurntableGroup);
 }
 
 // Whether `out` names a frame folder ("out/", an existing folder, a name without extension);
@@ -117,7 +132,7 @@ void check_keyframe_options(const TurntableOptions& o, const TurntableChecks& c)
 void add_turntable_options(CLI::App& cmd, TurntableOptions& o) {
   add_scene_options(cmd, o.scene);
   add_view_options(cmd, o.view);
-  add_illumination_options(cmd, o.illumination);
+  add_illumination_options(cmd, &o.foliage);
   add_style_options(cmd, o.style, o.sets);
   add_path_options(cmd, o);
   add_slice_options(cmd, o);
@@ -135,7 +150,7 @@ TurntableChecks check_turntable_options(const CLI::App& cmd, TurntableOptions& o
     if (o.resume) throw InputError("--report", "needs every frame rendered; drop --resume");
   }
   c.range = parse_frame_range(o.range, o.path.frames);
-  c.style = resolve_style(cmd, o.style, o.sets, o.illumination);
+  c.style = resolve_style(cmd, o.style, o.sets);
   c.blobs = c.style->traits().blob_outlines;
   c.vector = o.frame_format == "svg" || o.frame_format == "pdf";
   check_frame_format(o, c);

@@ -17,7 +17,7 @@ namespace sylva::cli {
 struct TurntableOptions {
   SceneOptions scene;
   ViewOptions view;
-  IlluminationOptions illumination;
+  FoliageRunOptions foliage;
   std::string style = "standard";
   std::vector<std::string> sets;
   TurntablePath path;

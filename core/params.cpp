@@ -33,6 +33,13 @@ std::string range_text(const ParamSpec& s) {
   return std::string(s.min_open ? "(" : "[") + number_text(s.min) + ", " + number_text(s.max) + "]";
 }
 
+std::string choices_list(const ParamSpec& s) {
+  std::string list;
+  for (const std::string& c : s.choices)
+    list += (list.empty() ? "" : ", ") + c;
+  return list;
+}
+
 std::string section_of(const std::string& key) {
   const size_t dot = key.find('.');
   return dot == std::string::npos ? std::string() : key.substr(0, dot);
@@ -61,10 +68,32 @@ std::string hex_color(const glm::vec3& linear) {
   return buf;
 }
 
+std::string allowed_text(const ParamSpec& s) {
+  switch (s.type) {
+    case ParamType::Float:
+    case ParamType::Int:
+      return range_text(s) + (s.unit.empty() ? "" : " " + s.unit);
+    case ParamType::Bool:
+      return "true | false";
+    case ParamType::Color:
+      return "\"#RRGGBB\"";
+    case ParamType::Choice: {
+      std::string c;
+      for (const std::string& x : s.choices)
+        c += (c.empty() ? "" : " | ") + x;
+      return c;
+    }
+    case ParamType::Text:
+      return s.forms;
+  }
+  return "";
+}
+
 void ParamSet::add(ParamSpec spec, Binding binding) {
   SYLVA_CHECK(!has(spec.key), "duplicate parameter " + spec.key);
   m_specs.push_back(std::move(spec));
   m_bindings.push_back(std::move(binding));
+  m_sources.emplace_back();
   m_specs.back().default_text = value_text(m_specs.back().key);
 }
 
@@ -122,17 +151,25 @@ void ParamSet::add_color(const std::string& key, glm::vec3& field, const std::st
 
 void ParamSet::add_choice(const std::string& key, std::string& field,
                           std::vector<std::string> choices, const std::string& doc) {
-  bool ok = false;
-  for (const std::string& c : choices)
-    ok = ok || c == field;
-  SYLVA_CHECK(ok, "default of " + key + " is not one of its choices");
+  auto names = std::make_shared<const std::vector<std::string>>(choices);
+  std::string* f = &field;
+  add_choice_binding(
+      key, std::move(choices), doc, [f, names](size_t i) { *f = (*names)[i]; },
+      [f, names] { return size_t(std::find(names->begin(), names->end(), *f) - names->begin()); });
+}
+
+void ParamSet::add_choice_binding(const std::string& key, std::vector<std::string> choices,
+                                  const std::string& doc, std::function<void(size_t)> set,
+                                  std::function<size_t()> get) {
+  SYLVA_CHECK(get() < choices.size(), "default of " + key + " is not one of its choices");
   ParamSpec s;
   s.key = key;
   s.type = ParamType::Choice;
   s.choices = std::move(choices);
   s.doc = doc;
   Binding b;
-  b.s = &field;
+  b.set_choice = std::move(set);
+  b.choice = std::move(get);
   add(std::move(s), std::move(b));
 }
 
@@ -174,6 +211,25 @@ const ParamSpec& ParamSet::spec(const std::string& key, const std::string& where
   return m_specs[index(key, where)];
 }
 
+void ParamSet::check_number(size_t i, double value, const std::string& where) const {
+  const ParamSpec& s = m_specs[i];
+  const auto outside = [&](const char* as) {
+    throw InputError(where, s.key + " = " + number_text(value) + " is outside " + range_text(s) +
+                                as + (s.unit.empty() ? "" : " " + s.unit));
+  };
+  const bool below = s.min_open ? !(value > s.min) : !(value >= s.min);
+  if (!std::isfinite(value) || below || value > s.max) outside("");
+  if (s.type == ParamType::Int) {
+    if (value != std::floor(value))
+      throw InputError(where, s.key + " must be a whole number, got " + number_text(value));
+  } else {
+    // As a float: a value the double range admits may round to the open bound (1e-50 in
+    // (0, ...] becomes 0) or overflow.
+    const float f = float(value);
+    if (!std::isfinite(f) || (s.min_open && !(f > s.min))) outside(" as a 32-bit float");
+  }
+}
+
 void ParamSet::set_number(const std::string& key, double value, const std::string& where) {
   const size_t i = index(key, where);
   const ParamSpec& s = m_specs[i];
@@ -186,23 +242,12 @@ void ParamSet::set_number(const std::string& key, double value, const std::strin
                                 (s.type == ParamType::Bool ? std::string("true or false")
                                                            : std::string("a text value")) +
                                 ", got the number " + number_text(value));
-  const auto outside = [&](const char* as) {
-    throw InputError(where, key + " = " + number_text(value) + " is outside " + range_text(s) + as +
-                                (s.unit.empty() ? "" : " " + s.unit));
-  };
-  const bool below = s.min_open ? !(value > s.min) : !(value >= s.min);
-  if (!std::isfinite(value) || below || value > s.max) outside("");
-  if (s.type == ParamType::Int) {
-    if (value != std::floor(value))
-      throw InputError(where, key + " must be a whole number, got " + number_text(value));
+  check_number(i, value, where);
+  if (s.type == ParamType::Int)
     *m_bindings[i].i = int(value);
-  } else {
-    // As a float: a value the double range admits may round to the open bound (1e-50 in
-    // (0, ...] becomes 0) or overflow.
-    const float f = float(value);
-    if (!std::isfinite(f) || (s.min_open && !(f > s.min))) outside(" as a 32-bit float");
-    *m_bindings[i].f = f;
-  }
+  else
+    *m_bindings[i].f = float(value);
+  m_sources[i] = where;
 }
 
 void ParamSet::set_bool(const std::string& key, bool value, const std::string& where) {
@@ -210,6 +255,7 @@ void ParamSet::set_bool(const std::string& key, bool value, const std::string& w
   if (m_specs[i].type != ParamType::Bool)
     throw InputError(where, key + " is not a true/false value");
   *m_bindings[i].b = value;
+  m_sources[i] = where;
 }
 
 void ParamSet::set_text(const std::string& key, const std::string& value,
@@ -222,29 +268,26 @@ void ParamSet::set_text(const std::string& key, const std::string& value,
       if (!parse_hex_color(value, c))
         throw InputError(where, key + " must be a colour \"#RRGGBB\", got \"" + value + "\"");
       *m_bindings[i].c = c;
-      return;
+      break;
     }
     case ParamType::Choice: {
-      std::string list;
-      for (const std::string& c : s.choices) {
-        if (c == value) {
-          *m_bindings[i].s = value;
-          return;
-        }
-        list += (list.empty() ? "" : ", ") + c;
-      }
-      throw InputError(where, key + " = \"" + value + "\" is not one of " + list);
+      const auto at = std::find(s.choices.begin(), s.choices.end(), value);
+      if (at == s.choices.end())
+        throw InputError(where, key + " = \"" + value + "\" is not one of " + choices_list(s));
+      m_bindings[i].set_choice(size_t(at - s.choices.begin()));
+      break;
     }
     case ParamType::Text:
       m_bindings[i].check(value, where + ": " + key);
       *m_bindings[i].s = value;
-      return;
+      break;
     default:
       throw InputError(where, key + " must be " +
                                   (s.type == ParamType::Bool ? std::string("true or false")
                                                              : "a number in " + range_text(s)) +
                                   ", got \"" + value + "\"");
   }
+  m_sources[i] = where;
 }
 
 void ParamSet::set_from_string(const std::string& key, const std::string& text,
@@ -283,8 +326,47 @@ std::string ParamSet::value_text(const std::string& key) const {
       return *b.b ? "true" : "false";
     case ParamType::Color:
       return hex_color(*b.c);
-    default:
+    case ParamType::Choice: {
+      const size_t c = b.choice();
+      SYLVA_CHECK(c < m_specs[i].choices.size(), key + " holds a value that is not a choice");
+      return m_specs[i].choices[c];
+    }
+    case ParamType::Text:
       return *b.s;
+  }
+  return "";
+}
+
+const std::string& ParamSet::source(const std::string& key) const {
+  return m_sources[index(key, "parameter")];
+}
+
+void ParamSet::check_values(const std::string& where) const {
+  for (size_t i = 0; i < m_specs.size(); ++i) {
+    const ParamSpec& s = m_specs[i];
+    const Binding& b = m_bindings[i];
+    switch (s.type) {
+      case ParamType::Float:
+        check_number(i, double(*b.f), where);
+        break;
+      case ParamType::Int:
+        check_number(i, double(*b.i), where);
+        break;
+      case ParamType::Bool:
+        break;
+      case ParamType::Color:
+        for (int c = 0; c < 3; ++c)
+          if (!((*b.c)[c] >= 0.0f && (*b.c)[c] <= 1.0f))
+            throw InputError(where, s.key + " must be a colour with linear channels in [0, 1]");
+        break;
+      case ParamType::Choice:
+        if (b.choice() >= s.choices.size())
+          throw InputError(where, s.key + " holds a value that is not one of " + choices_list(s));
+        break;
+      case ParamType::Text:
+        b.check(*b.s, where + ": " + s.key);
+        break;
+    }
   }
 }
 

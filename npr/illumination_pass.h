@@ -5,12 +5,16 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "npr/foliage_illumination.h"
+#include "npr/foliage_settings.h"
 
 namespace sylva {
 
@@ -20,36 +24,17 @@ enum class NormalMode {
   Realigned,        // Luft §3.3 realigned unit normals, density ka
   RealignedScaled,  // as Realigned, and the normal target keeps |N| = ka (Luft Fig. 7c)
 };
-// "original", "realigned", "realigned-scaled"; throws InputError(where, ...).
+// The names of the modes: "original", "realigned", "realigned-scaled".
+std::vector<std::pair<std::string, NormalMode>> normal_mode_choices();
+// One of normal_mode_choices' names; throws InputError(where, ...).
 NormalMode parse_normal_mode(const std::string& text, const std::string& where);
 
-// The preprocessing's parameters as a user gives them (CLI options, preset keys foliage.*):
-// text where "auto" or a relative length is allowed; parsed by cli::illumination_setup.
-struct FoliageSettings {
-  std::string rho = "auto", tau = "auto", fraction = "auto", d_min = "auto";
-  int grid = 128;
-  float blend = 1.0f;
-  std::string normal_source = "surface";
-  float ka_min = 0.2f;
-  float exponent = 1.0f;
-  std::string ka_encoding = "attribute";
-  int smooth = 0;
-  float decimate = 1.0f;
-  bool per_triangle = false;
-  // Not a preset key: rho = auto's radius from the picture's scale (FoliageParams::
-  // picture_rho), set by styles with ink.detail; 0 = none.
-  double picture_rho = 0.0;
-  // Not preset keys: where the run writes and caches.
-  std::string surface_out;
-  bool no_cache = false;
-  std::string cache_dir;  // empty = default_cache_dir()
+// How a run uses the preprocessing besides its parameters: what it writes and caches.
+struct FoliageRun {
+  std::string surface_out;  // when set, the implicit surface is written there as .glb
+  std::string cache_dir;    // result cache folder (npr/foliage_cache.h); empty = no cache
+  std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty
 };
-
-// Binds the preset keys foliage.rho, .tau, .fraction, .grid, .blend, .normal_source, .ka_min,
-// .d_min, .exponent, .ka_encoding, .smooth, .decimate, .per_triangle with their ranges.
-void bind_foliage_params(ParamSet& set, FoliageSettings& s);
-// The preset key of a CLI option ("--ka-min" -> "foliage.ka_min"); "" if it has none.
-std::string foliage_key_of_option(const std::string& option);
 
 struct IlluminationSetup {
   const Scene* scene = nullptr;  // outlives execute()
@@ -58,12 +43,19 @@ struct IlluminationSetup {
   std::string surface_out;  // when set, the implicit surface is written there as .glb
   std::string cache_dir;    // result cache folder (npr/foliage_cache.h); empty = no cache
   std::function<void(const FoliageStats&)> on_done;  // progress/report hook, may be empty
-  std::string option_prefix;  // "--": parameter errors name the CLI option ("--tau")
+  // The names the preprocessing's errors use ("tau") mapped to the names to report instead
+  // (foliage_parameter_names: "foliage.tau (from --tau)"); others are reported as they are.
+  std::map<std::string, std::string> parameter_names;
   // When set, the first run stores its result here and every later run (other graphs over
   // the same scene and settings, e.g. the frames of a turntable) reuses it: the
   // preprocessing is view-independent, so it is computed once per animation.
   std::shared_ptr<std::shared_ptr<const VertexShading>> memo;
 };
+
+// The setup for `settings` (foliage_params, seeded by `seed`) on `scene` with `run`'s outputs;
+// errors name the foliage.* keys. Throws InputError for settings outside their specs.
+IlluminationSetup foliage_setup(const FoliageSettings& settings, const FoliageRun& run,
+                                uint64_t seed, const Scene& scene);
 
 // Returns the "vertex-shading" resource.
 int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup);

@@ -110,13 +110,13 @@ int sheet_columns(size_t n, const std::vector<std::string>& sweeps) {
   return static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n)) - 1e-9));
 }
 
-std::vector<std::unique_ptr<Style>> build_sheet_styles(
-    const std::vector<SheetEntry>& entries,
-    const std::function<void(ParamSet&)>& explicit_options) {
+std::vector<std::unique_ptr<Style>> build_sheet_styles(const std::vector<SheetEntry>& entries,
+                                                       const std::vector<ParamAssignment>& given) {
   std::vector<std::unique_ptr<Style>> styles;
   for (const SheetEntry& e : entries) {
     auto style = std::make_unique<Style>(e.style);
-    if (explicit_options) explicit_options(style->set());
+    for (const ParamAssignment& a : given)
+      style->set().set(a);
     for (const std::string& a : e.sets)
       apply_assignment(a, style->set(), "--set");
     styles.push_back(std::move(style));
@@ -133,6 +133,22 @@ std::vector<std::string> changed_parameters(const Style& style,
     if (value != spec.default_text) out.push_back(spec.key + "=" + value);
   }
   return out;
+}
+
+SheetScene make_sheet_scene(const Scene& scene, const RasterSetup& raster, const FoliageRun& run,
+                            uint64_t seed) {
+  SheetScene s;
+  s.raster = raster;
+  s.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
+  s.scene_sphere = scene.framing_sphere();
+  s.branch_cluster = scene.branch_cluster_id();
+  s.has_foliage = !scene.bounds(Role::Foliage).empty();
+  s.scene = &scene;
+  s.seed = seed;
+  s.foliage = [run, seed, &scene](const FoliageSettings& settings) {
+    return foliage_setup(settings, run, seed, scene);
+  };
+  return s;
 }
 
 SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& styles,
@@ -160,7 +176,9 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     const std::string fkey = foliage_key(style) + std::to_string(settings.picture_rho);
     if (!foliage.contains(fkey)) {
       auto s = scope("foliage-" + std::to_string(foliage.size()));
-      foliage[fkey] = add_foliage_illumination_pass(graph, scene.foliage(settings));
+      IlluminationSetup luft = scene.foliage(settings);
+      luft.parameter_names = foliage_parameter_names(style.set());
+      foliage[fkey] = add_foliage_illumination_pass(graph, std::move(luft));
     }
     const std::string rkey = raster_key(style, setup.request, mode, fkey);
     if (!rasters.contains(rkey)) {

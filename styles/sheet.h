@@ -37,10 +37,10 @@ std::vector<SheetEntry> expand_sheet(const std::vector<std::string>& styles,
 // a table, Luft Fig. 3), else ceil(sqrt(n)). n >= 1.
 int sheet_columns(size_t n, const std::vector<std::string>& sweeps);
 
-// The builds of `entries` with the command's foliage options (`explicit_options`, may be
-// empty) applied between the preset and the entry's sets. Throws InputError.
-std::vector<std::unique_ptr<Style>> build_sheet_styles(
-    const std::vector<SheetEntry>& entries, const std::function<void(ParamSet&)>& explicit_options);
+// The builds of `entries` with `given` (e.g. the CLI's foliage options, which name themselves
+// in errors) applied between the preset and the entry's sets. Throws InputError.
+std::vector<std::unique_ptr<Style>> build_sheet_styles(const std::vector<SheetEntry>& entries,
+                                                       const std::vector<ParamAssignment>& given);
 
 // "key=value" for every parameter the style holds at another value than the built-in
 // default, in `sylva styles` order; keys in `skip` are left out.
@@ -57,7 +57,9 @@ struct SheetScene {
   // model's (there is no crown to realign them to) instead of failing.
   bool has_foliage = true;
   std::shared_ptr<const BlobSet> blobs;  // StyleContext::blobs
-  // The Luft preprocessing for one style's foliage settings (parsed against the scene).
+  // The Luft preprocessing for one style's foliage settings; make_sheet_scene's resolves them
+  // with foliage_setup (npr/illumination_pass.h). A hook, so that frames of one scene can
+  // share one preprocessing (memoize_preprocessing) and tests can stub it.
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;
   // For styles with ao.model other than none: the scene the AO shells are fitted to (outlives
   // execute()) and the seed of the fit.
@@ -67,6 +69,11 @@ struct SheetScene {
   // tracer's BVH are computed once and shared. Null: per graph.
   std::shared_ptr<AoMemo> ao_memo;
 };
+
+// Every field for `scene` (outlives the sheet) seen through `raster`; the preprocessing of
+// each style's foliage settings runs with `run`'s cache and outputs, seeded by `seed`.
+SheetScene make_sheet_scene(const Scene& scene, const RasterSetup& raster, const FoliageRun& run,
+                            uint64_t seed);
 
 struct SheetPlan {
   std::vector<int> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented

@@ -211,11 +211,11 @@ FoliageSettings Style::foliage_settings(const Camera& camera, const Sphere& sphe
 }
 
 NormalMode Style::normals() const {
-  return parse_normal_mode(m_params.normals, "style.normals");
+  return m_params.normals;
 }
 
 void Style::configure(RasterRequest& request) const {
-  request.flat_albedo = m_params.albedo == "flat";
+  request.flat_albedo = m_params.albedo == AlbedoSource::Flat;
   request.id_kind = find_builder(m_info.builder, m_info.source).ids;
   // ink and blobs read the colour's alpha as coverage (the sheet keeps the view's background
   // for the style context).

@@ -3,9 +3,10 @@
 namespace sylva {
 
 void bind_style_params(ParamSet& set, StyleParams& p) {
-  set.add_choice("style.normals", p.normals, {"original", "realigned", "realigned-scaled"},
+  set.add_choice("style.normals", p.normals, normal_mode_choices(),
                  "normals the raster pass draws with (Luft §3.3, Fig. 7c)");
-  set.add_choice("style.albedo", p.albedo, {"textured", "flat"},
+  set.add_choice("style.albedo", p.albedo,
+                 {{"textured", AlbedoSource::Textured}, {"flat", AlbedoSource::Flat}},
                  "albedo colours: the textures' texels, or each texture's mean (flat tones)");
   bind_foliage_params(set, p.foliage);
   bind_ao_params(set, p.ao);

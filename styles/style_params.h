@@ -19,12 +19,17 @@
 
 namespace sylva {
 
+// style.albedo: what the albedo buffer holds.
+enum class AlbedoSource {
+  Textured,  // the textures' texels
+  Flat,      // each texture's mean (flat tones)
+};
+
 struct StyleParams {
   // style.normals: the normals the raster pass draws with: original, realigned (Luft §3.3),
   // realigned-scaled (their length is ka, Luft Fig. 7c).
-  std::string normals = "original";
-  // style.albedo: the albedo buffer's colours: the texture's texels, or its mean (flat tones).
-  std::string albedo = "textured";
+  NormalMode normals = NormalMode::Original;
+  AlbedoSource albedo = AlbedoSource::Textured;  // style.albedo
   FoliageSettings foliage;
   AoSettings ao;  // ao.*: ambient occlusion (npr/ao_pass.h)
   EdgeParams edges;

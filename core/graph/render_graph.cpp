@@ -113,9 +113,11 @@ void RenderGraph::execute(const std::function<void(const std::string&)>& after_p
     if (!pass.live) continue;
     PassContext ctx(*this, static_cast<int>(p));
     pass.run(ctx);
-    for (int w : pass.writes)
+    for (int w : pass.writes) {
       SYLVA_CHECK(!m_resources[w].live || m_resources[w].value.has_value(),
                   "pass '" + pass.name + "' did not write '" + resource_name(w) + "'");
+      if (m_observer && m_resources[w].live) m_observer(m_resources[w].name, m_resources[w].value);
+    }
     // Release inputs after their last reader, unless they are outputs.
     for (int r : pass.reads) {
       Resource& res = m_resources[r];

@@ -75,6 +75,11 @@ class RenderGraph {
   // Graphviz: passes as boxes, resources as ellipses, culled ones grey and dashed.
   std::string to_dot() const;
 
+  // Called by execute() with every live resource's full name and value right after the pass
+  // writing it ran (before inputs are released), e.g. for tests that check each pass's output.
+  using Observer = std::function<void(const std::string& resource, const std::any& value)>;
+  void set_observer(Observer observer) { m_observer = std::move(observer); }
+
  private:
   friend class PassContext;
   struct Resource {
@@ -96,6 +101,7 @@ class RenderGraph {
   std::vector<Pass> m_passes;
   bool m_compiled = false;
   std::string m_scope;
+  Observer m_observer;
   friend class GraphScope;
 };
 

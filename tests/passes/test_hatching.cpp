@@ -1,8 +1,8 @@
 // Tone strokes (passes/hatching.h) on a synthetic plane facing the camera: the hatching's
 // density rises monotonically with darkness along a shading ramp and crosses only in the
 // darkest part, a lit plane gets none, strokes are anchored to the scene (the camera moved by
-// a few px moves them with the surface), the result is the same bytes twice, stipples are
-// dots, and every pen.* parameter works at both ends of its range and fails just outside.
+// a few px moves them with the surface), the result is the same bytes twice, and stipples are
+// dots. Every pen.* parameter at both ends of its range: tests/styles/test_every_parameter.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -149,46 +149,6 @@ TEST(Hatching, DarkestMustExceedLightest) {
   EXPECT_THROW(validate_pen_params(p), InputError);
   p.darkest = 0.7f;
   EXPECT_NO_THROW(validate_pen_params(p));
-}
-
-TEST(Hatching, EveryParameterAtBothEndsAndJustOutside) {
-  const ToneImages in = plane();
-  PenParams probe = hatching();
-  ParamSet set;
-  bind_pen_params(set, probe);
-  ASSERT_EQ(set.specs().size(), 12u);
-  for (const ParamSpec& spec : set.specs()) {
-    std::vector<std::string> values;
-    if (spec.type == ParamType::Float || spec.type == ParamType::Int) {
-      values = {std::to_string(spec.min_open ? spec.min + 1e-3 : spec.min),
-                std::to_string(spec.max)};
-      EXPECT_THROW(set.set_number(spec.key, spec.max * 1.01 + 0.01, "test"), InputError)
-          << spec.key;
-      EXPECT_THROW(
-          set.set_number(spec.key, spec.min - 0.01 - (spec.type == ParamType::Int), "test"),
-          InputError)
-          << spec.key;
-    } else {
-      ASSERT_EQ(spec.type, ParamType::Choice) << spec.key;
-      values = spec.choices;
-      EXPECT_THROW(set.set_text(spec.key, "nonsense", "test"), InputError);
-    }
-    for (const std::string& v : values) {
-      probe = hatching();
-      probe.lightest = 0.0f;
-      probe.darkest = 1.0f;
-      set.set_from_string(spec.key, v, "test");
-      if (!(probe.darkest > probe.lightest)) {
-        EXPECT_THROW(validate_pen_params(probe), InputError);
-        continue;
-      }
-      const StrokeDrawing d = tone_strokes(in, view(), probe, 10.0);
-      for (const Stroke& s : d.strokes)
-        for (const glm::vec2& q : s.points)
-          EXPECT_TRUE(std::isfinite(q.x) && std::isfinite(q.y));
-      EXPECT_EQ(rasterize_strokes(d).size(), in.color.size()) << spec.key << " = " << v;
-    }
-  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Toon shading (Decaudin 1996): band count, order and boundaries on an N·L ramp, explicit
-// thresholds, the ka weight, parameter validation and extremes, determinism, background and
-// partial coverage. Lights, shadows and the graph: test_toon_lights.cpp.
+// thresholds, the ka weight, parameter validation, determinism, background and partial
+// coverage (every toon.* key at both ends of its range: tests/styles/test_every_parameter.cpp).
+// Lights, shadows and the graph: test_toon_lights.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -158,73 +159,6 @@ TEST(Toon, BadTonesNameTheKey) {
       EXPECT_NE(std::string(e.what()).find("toon.tones"), std::string::npos) << e.what();
     }
   }
-}
-
-TEST(Toon, EveryParameterAtBothEndsGivesFiniteOutput) {
-  ToonImages in = sphere(64);
-  in.shadow = square_shadow_map();
-  Lighting lights = Lighting::three_point();
-  Light point;
-  point.type = Light::Type::Point;
-  point.vector = glm::vec3(3.0f, 2.0f, 0.0f);
-  point.color = glm::vec3(0.2f);
-  lights.lights.push_back(point);
-  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0));
-
-  ToonParams defaults;
-  ParamSet probe;
-  bind_toon_params(probe, defaults);
-  ASSERT_GE(probe.specs().size(), 12u);
-  int runs_done = 0;
-  for (const ParamSpec& spec : probe.specs()) {
-    std::vector<std::string> values;
-    switch (spec.type) {
-      case ParamType::Float:
-      case ParamType::Int:
-        values = {std::to_string(spec.min), std::to_string(spec.max)};
-        break;
-      case ParamType::Bool:
-        values = {"false", "true"};
-        break;
-      case ParamType::Color:
-        values = {"#000000", "#ffffff"};
-        break;
-      case ParamType::Choice:
-        values = spec.choices;
-        break;
-      case ParamType::Text:
-        values = spec.key == "toon.thresholds" ? std::vector<std::string>{"-0.999,0.999"}
-                                               : std::vector<std::string>{"0,2,0"};
-        break;
-    }
-    for (const std::string& v : values) {
-      SCOPED_TRACE(spec.key + " = " + v);
-      ToonParams p;
-      p.cast_shadows = true;  // exercise the shadow map too, unless this is the key under test
-      ParamSet set;
-      bind_toon_params(set, p);
-      set.set_from_string(spec.key, v, "test");
-      for (const char* mode : {"key", "sum"}) {
-        if (spec.key != "toon.light") p.light = mode;
-        const cv::Mat lin = toon_shade_linear(in, lights, view, p);
-        ASSERT_EQ(lin.type(), CV_32FC4);
-        EXPECT_TRUE(all_finite(lin));
-        EXPECT_EQ(toon_shade(in, lights, view, p).type(), CV_8UC4);
-        ++runs_done;
-      }
-    }
-    // Just outside the range is an input error naming the key.
-    if (spec.type == ParamType::Float || spec.type == ParamType::Int) {
-      const double step = spec.type == ParamType::Int ? 1.0 : 1e-3;
-      for (double v : {spec.min - step, spec.max + step}) {
-        ToonParams p;
-        ParamSet set;
-        bind_toon_params(set, p);
-        EXPECT_THROW(set.set_number(spec.key, v, "test"), InputError) << spec.key << " " << v;
-      }
-    }
-  }
-  EXPECT_GT(runs_done, 40);
 }
 
 TEST(Toon, Deterministic) {

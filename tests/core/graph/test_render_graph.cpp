@@ -1,5 +1,6 @@
 // The render graph culls passes and resources nobody presents, runs the rest in order,
-// tells multi-output passes which outputs are wanted, and frees inputs after their last use.
+// tells multi-output passes which outputs are wanted, frees inputs after their last use, and
+// shows an observer what each pass wrote.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -77,6 +78,19 @@ TEST(RenderGraph, IntermediatesAreReleasedAfterLastReader) {
   f.g.present(f.edges_out);
   f.g.execute();
   EXPECT_DEATH_IF_SUPPORTED((void)f.g.get<int>(f.normal), "not produced");
+}
+
+// The observer sees every live resource as it is written, intermediates included (which the
+// graph then releases), and nothing of culled passes.
+TEST(RenderGraph, ObserverSeesEveryLiveResourceAsItIsWritten) {
+  Fixture f;
+  std::string seen;
+  f.g.set_observer([&](const std::string& name, const std::any& value) {
+    seen += name + "=" + std::to_string(std::any_cast<int>(value)) + ";";
+  });
+  f.g.present(f.edges_out);
+  f.g.execute();
+  EXPECT_EQ(seen, "normal=1;id=1;edges=2;");
 }
 
 TEST(RenderGraph, DotExportMarksCulledNodes) {
