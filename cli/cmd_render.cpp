@@ -61,7 +61,7 @@ GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, IlluminationSe
   }
   setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
   GBufferHandles gb = add_raster_pass(graph, setup);
-  if (ao.model == "raytraced")
+  if (ao.model == AoModel::Raytraced)
     gb.ao = add_raytraced_ao_pass(graph, &frame.scene, gb.position, gb.normal, setup.camera.view,
                                   ao.rays, seed);
   return gb;

@@ -23,10 +23,35 @@ bool parse_number(const std::string& text, double& v) {
 
 }  // namespace
 
+const std::vector<std::pair<std::string, AoModel>>& ao_model_choices() {
+  static const std::vector<std::pair<std::string, AoModel>> c = {
+      {"none", AoModel::None},
+      {"constant", AoModel::Constant},
+      {"luft-density", AoModel::LuftDensity},
+      {"hegeman-sphere", AoModel::HegemanSphere},
+      {"hegeman-ellipsoid", AoModel::HegemanEllipsoid},
+      {"hegeman-shells", AoModel::HegemanShells},
+      {"raytraced", AoModel::Raytraced}};
+  return c;
+}
+
+AoModel parse_ao_model(const std::string& name, const std::string& where) {
+  std::string allowed;
+  for (const auto& [n, model] : ao_model_choices()) {
+    if (n == name) return model;
+    allowed += (allowed.empty() ? "" : ", ") + n;
+  }
+  throw InputError(where, "unknown model '" + name + "' (allowed: " + allowed + ")");
+}
+
+const std::string& ao_model_name(AoModel model) {
+  for (const auto& [n, m] : ao_model_choices())
+    if (m == model) return n;
+  throw InputError("ao.model", "holds none of the models");
+}
+
 void bind_ao_params(ParamSet& set, AoSettings& s) {
-  set.add_choice("ao.model", s.model,
-                 {"none", "constant", "luft-density", "hegeman-sphere", "hegeman-ellipsoid",
-                  "hegeman-shells", "raytraced"},
+  set.add_choice("ao.model", s.model, ao_model_choices(),
                  "ambient occlusion multiplying the ambient term and written to the ao buffer");
   set.add_float("ao.constant", s.constant, 0, 1, "", "visibility of ao.model = constant");
   set.add_text(
@@ -41,21 +66,28 @@ void bind_ao_params(ParamSet& set, AoSettings& s) {
       "Hegeman Eq. 6 occluder density x size; auto = fitted to ray-traced AO");
   set.add_int("ao.shells", s.shells, 1, kMaxAoShells, "shells",
               "k of ao.model = hegeman-shells (k-means clusters of the foliage)");
-  set.add_choice("ao.solid_angle", s.solid_angle, {"exact", "paper"},
+  set.add_choice("ao.solid_angle", s.solid_angle,
+                 {{"exact", SolidAngleModel::Exact}, {"paper", SolidAngleModel::Paper}},
                  "hegeman-*: the crown's solid angle darkening wood, ground and grass "
                  "(Hegeman Eq. 7-8): exact or the paper's pi (r/d)^2");
   set.add_int("ao.rays", s.rays, 1, 4096, "rays per pixel", "rays of ao.model = raytraced");
 }
 
-AoShading::Model ao_model_of(const std::string& model) {
-  if (model == "none" || model == "raytraced") return AoShading::Model::None;
-  if (model == "constant") return AoShading::Model::Constant;
-  if (model == "luft-density") return AoShading::Model::Ka;
-  if (model == "hegeman-sphere" || model == "hegeman-ellipsoid" || model == "hegeman-shells")
-    return AoShading::Model::Shells;
-  throw InputError("ao.model", "unknown model '" + model +
-                                   "' (allowed: none, constant, luft-density, hegeman-sphere, "
-                                   "hegeman-ellipsoid, hegeman-shells, raytraced)");
+AoShading::Model ao_model_of(AoModel model) {
+  switch (model) {
+    case AoModel::None:
+    case AoModel::Raytraced:
+      return AoShading::Model::None;
+    case AoModel::Constant:
+      return AoShading::Model::Constant;
+    case AoModel::LuftDensity:
+      return AoShading::Model::Ka;
+    case AoModel::HegemanSphere:
+    case AoModel::HegemanEllipsoid:
+    case AoModel::HegemanShells:
+      return AoShading::Model::Shells;
+  }
+  throw InputError("ao.model", "holds none of the models");
 }
 
 AoReferenceScene make_scene_tracer(const Scene& scene) {
@@ -125,8 +157,8 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
   ao.model = ao_model_of(s.model);
   ao.constant = s.constant;
   if (ao.model != AoShading::Model::Shells) return ao;
-  if (s.solid_angle != "exact" && s.solid_angle != "paper")
-    throw InputError("ao.solid_angle", "must be exact or paper, got '" + s.solid_angle + "'");
+  if (s.solid_angle != SolidAngleModel::Exact && s.solid_angle != SolidAngleModel::Paper)
+    throw InputError("ao.solid_angle", "must be exact or paper");
   const std::vector<glm::vec3> points = foliage_vertices(scene);
   Bounds grass, ground;  // of the Role::Grass and Role::Ground triangles (none without roles)
   for (const Mesh& m : scene.meshes)
@@ -141,7 +173,7 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
   const bool flat_ground =
       !ground.empty() && ground.max.y - ground.min.y <= 1e-6f * std::max(1.0f, ground.diagonal());
   auto finish = [&](AoShading out) {
-    out.exact_solid_angle = s.solid_angle == "exact";
+    out.exact_solid_angle = s.solid_angle == SolidAngleModel::Exact;
     out.ground_plane = flat_ground;
     out.ground_y = flat_ground ? ground.min.y : 0.0f;
     if (!grass.empty()) {
@@ -151,10 +183,11 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
     return out;
   };
   if (points.empty() && !grass.empty()) return finish(ao);
-  if (points.empty()) throw InputError("ao.model", "'" + s.model + "' needs foliage");
+  if (points.empty())
+    throw InputError("ao.model", "'" + ao_model_name(s.model) + "' needs foliage");
   AoShellFit fit;
-  fit.ellipsoid = s.model != "hegeman-sphere";
-  fit.shells = s.model == "hegeman-shells" ? s.shells : 1;
+  fit.ellipsoid = s.model != AoModel::HegemanSphere;
+  fit.shells = s.model == AoModel::HegemanShells ? s.shells : 1;
   fit.seed = seed;
   if (s.alpha_rho == "auto") {
     for (const Mesh& m : scene.meshes)
@@ -184,8 +217,9 @@ AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t see
 }
 
 std::string ao_memo_key(const AoSettings& s, uint64_t seed) {
-  return s.model + ";" + std::to_string(s.constant) + ";" + s.alpha_rho + ";" +
-         std::to_string(s.shells) + ";" + s.solid_angle + ";" + std::to_string(seed);
+  return ao_model_name(s.model) + ";" + std::to_string(s.constant) + ";" + s.alpha_rho + ";" +
+         std::to_string(s.shells) + ";" +
+         (s.solid_angle == SolidAngleModel::Exact ? "exact" : "paper") + ";" + std::to_string(seed);
 }
 
 int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {

@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/gl/rasterizer.h"
@@ -17,18 +18,34 @@
 #include "core/params.h"
 #include "core/scene/scene.h"
 #include "npr/ao_reference.h"
+#include "npr/hegeman_ao.h"
 
 namespace sylva {
 
+// ao.model. None: no AO (the AO target is 1 on geometry, images unchanged). Hegeman*: leaves
+// by Hegeman et al. Eq. 4-6 in their shell; wood, ground and other geometry by the solid angle
+// of the crown's bounding sphere (Eq. 7-8, core/gl/ao_shading.h); grass blades by Eq. 9 times
+// that. Raytraced: the ao buffer only (a pass after the raster pass); the colour's ambient term
+// is not darkened by it.
+enum class AoModel {
+  None,
+  Constant,
+  LuftDensity,
+  HegemanSphere,
+  HegemanEllipsoid,
+  HegemanShells,
+  Raytraced,
+};
+// The names of the models as ao.model takes them: none, constant, luft-density,
+// hegeman-sphere, hegeman-ellipsoid, hegeman-shells, raytraced (in that order).
+const std::vector<std::pair<std::string, AoModel>>& ao_model_choices();
+// One of ao_model_choices' names; throws InputError(where, ...) naming them.
+AoModel parse_ao_model(const std::string& name, const std::string& where);
+const std::string& ao_model_name(AoModel model);
+
 // The ao.* preset keys as a user gives them.
 struct AoSettings {
-  // none | constant | luft-density | hegeman-sphere | hegeman-ellipsoid | hegeman-shells |
-  // raytraced. none: no AO (the AO target is 1 on geometry, images unchanged). hegeman-*:
-  // leaves by Hegeman et al. Eq. 4-6 in their shell; wood, ground and other geometry by the
-  // solid angle of the crown's bounding sphere (Eq. 7-8, core/gl/ao_shading.h); grass blades
-  // by Eq. 9 times that. raytraced: the ao buffer only (a pass after the raster pass); the
-  // colour's ambient term is not darkened by it.
-  std::string model = "none";
+  AoModel model = AoModel::None;
   // constant: the visibility everywhere, [0, 1]. 0.6 is about the mean ray-traced visibility
   // of the sample crowns' leaves, so switching from hegeman-* keeps the overall tone.
   float constant = 0.6f;
@@ -38,8 +55,8 @@ struct AoSettings {
   std::string alpha_rho = "auto";
   int shells = 4;  // hegeman-shells: k, [1, 64]
   // hegeman-*: the crown's solid angle that occludes non-foliage (Hegeman et al. Eq. 7-8):
-  // "exact" (default) 2 pi (1 - sqrt(1 - (r/d)^2)) or "paper" pi (r/d)^2 (Eq. 7).
-  std::string solid_angle = "exact";
+  // exact (default) 2 pi (1 - sqrt(1 - (r/d)^2)) or paper pi (r/d)^2 (Eq. 7).
+  SolidAngleModel solid_angle = SolidAngleModel::Exact;
   int rays = 64;  // raytraced: rays per pixel, [1, 4096]
 };
 
@@ -47,8 +64,8 @@ struct AoSettings {
 // their ranges.
 void bind_ao_params(ParamSet& set, AoSettings& s);
 // What the raster pass evaluates for the model (raytraced: None, the raster pass draws no
-// AO). Throws InputError("ao.model", ...) for an unknown model.
-AoShading::Model ao_model_of(const std::string& model);
+// AO). Throws InputError("ao.model", ...) for a value that is none of the models.
+AoShading::Model ao_model_of(AoModel model);
 
 // The ray tracer over every scene triangle; alpha-MASK/BLEND materials with a base-colour
 // texture let rays through texels whose alpha (times the material's) is below the cutoff

@@ -280,8 +280,6 @@ void check_inputs(const EdgeImages& in, const EdgeParams& p, const cv::Size& siz
   SYLVA_CHECK(!p.uses_depth() || !in.depth.empty(), "edges: the parameters need depth");
   SYLVA_CHECK(!p.uses_normal() || !in.normal.empty(), "edges: the parameters need normals");
   SYLVA_CHECK(!p.uses_id() || !in.id.empty(), "edges: the parameters need ids");
-  SYLVA_CHECK(p.normal_metric == "angle" || p.normal_metric == "vector",
-              "edges: unknown normal metric " + p.normal_metric);
 }
 
 void or_marks(EdgeMarks& into, const EdgeMarks& from) {
@@ -304,7 +302,8 @@ EdgeMarks find_edge_marks(const EdgeImages& in, const EdgeParams& p, cv::Mat& fg
     creases = empty_marks(size);
     mark_creases(in.depth, fg, p.crease_threshold / (1000.0 * reference_scale(size)), creases);
   }
-  if (p.normal) mark_normals(in.normal, fg, p.normal_threshold, p.normal_metric == "vector", marks);
+  if (p.normal)
+    mark_normals(in.normal, fg, p.normal_threshold, p.normal_metric == NormalMetric::Vector, marks);
   if (p.id) mark_ids(in.id, fg, marks);
   EdgeMarks outline;
   if (p.silhouette) {

@@ -26,7 +26,8 @@ void bind_edge_params(ParamSet& set, EdgeParams& p) {
   set.add_bool("edges.normal", p.normal, "lines at normal discontinuities (Decaudin)");
   set.add_float("edges.normal_threshold", p.normal_threshold, 0.0, 180.0, "degrees",
                 "a line where neighbouring normals are more than this angle apart", true);
-  set.add_choice("edges.normal_metric", p.normal_metric, {"angle", "vector"},
+  set.add_choice("edges.normal_metric", p.normal_metric,
+                 {{"angle", NormalMetric::Angle}, {"vector", NormalMetric::Vector}},
                  "angle: between directions; vector: |N_p - N_q|, so short (low-ka) normals "
                  "give fewer lines (Luft et al. Fig. 7c)");
   set.add_bool("edges.id", p.id, "lines where the id (primitive, cluster, object) changes");

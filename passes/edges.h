@@ -42,6 +42,9 @@
 
 namespace sylva {
 
+// edges.normal_metric: how neighbouring normals are compared (see EdgeParams::normal).
+enum class NormalMetric { Angle, Vector };
+
 struct EdgeParams {
   // edges.silhouette: outline of the drawing against the background, from coverage (colour
   // alpha >= 0.5 when the colour image is given, else depth > 0, else id != 0, else |N| > 0).
@@ -77,7 +80,7 @@ struct EdgeParams {
   // fewer lines inside the crown. Range (0, 180], unit degrees; default 40.
   bool normal = true;
   float normal_threshold = 40.0f;
-  std::string normal_metric = "angle";  // "angle" | "vector"
+  NormalMetric normal_metric = NormalMetric::Angle;
 
   // edges.id: a line wherever the id changes between covered 4-neighbours (primitive, cluster
   // or object, whatever the frame's id buffer holds). No threshold.

@@ -174,8 +174,8 @@ void validate_toon_params(const ToonParams& p) {
   for (int c = 0; c < 3; ++c)
     check_range("toon.shadow_tint", p.shadow_tint[c], 0.0f, 1.0f);
   check_range("toon.ka_weight", p.ka_weight, 0.0f, 1.0f);
-  if (p.light != "key" && p.light != "sum")
-    throw InputError("toon.light", "\"" + p.light + "\" is not one of key, sum");
+  if (p.light != ToonLight::Key && p.light != ToonLight::Sum)
+    throw InputError("toon.light", "is not one of key, sum");
   check_range("toon.specular_threshold", p.specular_threshold, 0.0f, 1.0f);
   check_range("toon.specular_strength", p.specular_strength, 0.0f, 1.0f);
   check_range("toon.shadow_bias", p.shadow_bias, 0.0f, kMaxBias);
@@ -236,7 +236,7 @@ int toon_key_light(const Lighting& lights) {
 
 bool toon_needs_position(const Lighting& lights, const ToonParams& p) {
   if (p.cast_shadows) return true;
-  if (p.light == "sum") {
+  if (p.light == ToonLight::Sum) {
     for (const Light& l : lights.lights)
       if (l.type == Light::Type::Point) return true;
     return false;
@@ -269,7 +269,7 @@ void bind_toon_params(ParamSet& set, ToonParams& p) {
   set.add_color("toon.shadow_tint", p.shadow_tint, "colour multiplying the shadow tone");
   set.add_float("toon.ka_weight", p.ka_weight, 0.0, 1.0, "",
                 "how much the ambient coefficient darkens the bands: tone * mix(1, ka, w)");
-  set.add_choice("toon.light", p.light, {"key", "sum"},
+  set.add_choice("toon.light", p.light, {{"key", ToonLight::Key}, {"sum", ToonLight::Sum}},
                  "what drives the bands: the brightest directional light, or all lights");
   set.add_bool("toon.specular", p.specular, "flat highlight band from the key light");
   set.add_float("toon.specular_threshold", p.specular_threshold, 0.0, 1.0, "N·H",
@@ -312,7 +312,7 @@ cv::Mat toon_shade_linear(const ToonImages& in, const Lighting& lights, const gl
     if (m > 0.0f) highlight = k.color / m;
   }
   key_light.key = true;
-  if (p.light == "sum" && !lights.lights.empty()) {
+  if (p.light == ToonLight::Sum && !lights.lights.empty()) {
     float max_lum = 0.0f;
     for (const Light& l : lights.lights)
       max_lum = std::max(max_lum, luminance(l.color));

@@ -42,6 +42,10 @@
 
 namespace sylva {
 
+// toon.light: Key (default) = the brightest directional light drives the bands (else the
+// brightest point light; no lights = a headlight along view +Z); Sum = all lights.
+enum class ToonLight { Key, Sum };
+
 struct ToonParams {
   // toon.bands: number of lit bands k; [2, 8]; default 3.
   int bands = 3;
@@ -63,9 +67,8 @@ struct ToonParams {
   // toon.ka_weight: how much the ambient coefficient darkens the bands, tone * mix(1, ka, w);
   // [0, 1]; default 0.5 (0 = ka is not read).
   float ka_weight = 0.5f;
-  // toon.light: "key" (default) = the brightest directional light drives the bands (else the
-  // brightest point light; no lights = a headlight along view +Z); "sum" = all lights.
-  std::string light = "key";
+  // toon.light: what drives the bands (ToonLight); default key.
+  ToonLight light = ToonLight::Key;
   // toon.specular: a flat highlight band from the key light; default false.
   bool specular = false;
   // toon.specular_threshold: N·H (Blinn half vector) above which the highlight shows;

@@ -23,9 +23,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-const std::vector<std::string> kModels = {"none",           "constant",          "luft-density",
-                                          "hegeman-sphere", "hegeman-ellipsoid", "hegeman-shells",
-                                          "raytraced"};
+// The models as ao.model names them.
+const std::vector<std::string> kModels = [] {
+  std::vector<std::string> names;
+  for (const auto& [name, model] : ao_model_choices())
+    names.push_back(name);
+  return names;
+}();
 
 std::string joined_models() {
   std::string s;
@@ -328,7 +332,7 @@ class AoStudyRun {
   std::function<AoShading()> hegeman(const std::string& model, int k) const {
     return [&scene = m_scene, &o = m_o, model, k] {
       AoSettings s;
-      s.model = model;
+      s.model = parse_ao_model(model, "models");
       s.shells = k;
       s.alpha_rho = o.alpha_rho;
       return scene_ao_shading(scene, s, o.seed);

@@ -56,7 +56,7 @@ std::string raster_key(const Style& style, const RasterRequest& request, NormalM
     << static_cast<int>(request.id_kind) << '|' << request.background.r << ','
     << request.background.g << ',' << request.background.b << ',' << request.background.a;
   if (mode != NormalMode::Original) k << '|' << foliage;
-  if (style.params().ao.model != "none") k << '|' << ao_key(style);
+  if (style.params().ao.model != AoModel::None) k << '|' << ao_key(style);
   return k.str();
 }
 
@@ -201,7 +201,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
       }
       auto s = scope("raster-" + std::to_string(rasters.size()));
       rasters[rkey] = add_raster_pass(graph, setup);
-      if (aos.model == "raytraced") {
+      if (aos.model == AoModel::Raytraced) {
         SYLVA_CHECK(scene.scene != nullptr, "ao.model needs SheetScene::scene");
         rasters[rkey].ao =
             add_raytraced_ao_pass(graph, scene.scene, rasters[rkey].position, rasters[rkey].normal,

@@ -151,13 +151,13 @@ TEST(Edges, VectorMetricOnShortNormalsGivesFewerEdges) {
   // Unit normals: both metrics are the same test.
   const EdgeImages unit = render(CubeScene{.sphere = true}, 256);
   const int angle_unit = count(mark_edges(unit, p));
-  p.normal_metric = "vector";
+  p.normal_metric = NormalMetric::Vector;
   EXPECT_EQ(count(mark_edges(unit, p)), angle_unit);
   // The sphere's normals scaled by ka = 0.3, as realigned-scaled normals deep in a crown.
   const EdgeImages scaled = render(CubeScene{.sphere = true, .ka = 0.3f}, 256);
-  p.normal_metric = "angle";
+  p.normal_metric = NormalMetric::Angle;
   const int angle = count(mark_edges(scaled, p));
-  p.normal_metric = "vector";
+  p.normal_metric = NormalMetric::Vector;
   const int vector = count(mark_edges(scaled, p));
   EXPECT_EQ(angle, angle_unit);  // the angle metric ignores the length
   EXPECT_LT(vector, angle);

@@ -166,7 +166,7 @@ TEST(Toon, Deterministic) {
   in.shadow = square_shadow_map();
   ToonParams p;
   p.specular = true;
-  p.light = "sum";
+  p.light = ToonLight::Sum;
   p.cast_shadows = true;
   const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0));
   const cv::Mat a = toon_shade(in, Lighting::three_point(), view, p);
@@ -191,7 +191,7 @@ TEST(Toon, BackgroundPixelsAreUntouched) {
       in.normal.at<cv::Vec3f>(y, x) = cv::Vec3f(NAN, NAN, NAN);
     }
   ASSERT_GT(background, 500);
-  for (const char* mode : {"key", "sum"}) {
+  for (ToonLight mode : {ToonLight::Key, ToonLight::Sum}) {
     ToonParams p;
     p.light = mode;
     p.specular = true;

@@ -62,7 +62,7 @@ TEST(Toon, SumLightsTheKeysShadowSide) {
   two.lights.push_back(back);
   ToonParams p;
   const cv::Mat key = toon_shade(ramp(), two, glm::mat4(1.0f), p);
-  p.light = "sum";
+  p.light = ToonLight::Sum;
   const cv::Mat sum = toon_shade(ramp(), two, glm::mat4(1.0f), p);
   // Key: the facing-away end is the shadow tone; sum: the back light lights it with a band.
   const cv::Vec4b shadow = key.at<cv::Vec4b>(0, 0);
@@ -265,7 +265,7 @@ TEST(Toon, WritesLookImagesWhenAsked) {
       p.specular = true;
     }
     if (variant == 2) {
-      p.light = "sum";
+      p.light = ToonLight::Sum;
       p.ka_weight = 1.0f;
     }
     if (variant == 3) {

@@ -68,7 +68,7 @@ void BM_AoRaster(benchmark::State& state) {
   RasterRequest request;
   if (m.model) {
     AoSettings settings;
-    settings.model = m.model;
+    settings.model = parse_ao_model(m.model, "perf");
     settings.shells = m.shells;
     request.ao = scene_ao_shading(r.scene, settings, 1);  // fitted once, as per turntable
   }

@@ -153,7 +153,7 @@ TEST(Ao, AutoAlphaRhoIsFinitePositive) {
   AoRig rig;
   for (const char* model : {"hegeman-sphere", "hegeman-shells"}) {
     AoSettings settings;
-    settings.model = model;
+    settings.model = parse_ao_model(model, "test");
     settings.alpha_rho = "auto";
     const AoShading ao = scene_ao_shading(rig.scene, settings, 1);
     EXPECT_TRUE(std::isfinite(ao.alpha_rho)) << model;
@@ -221,7 +221,7 @@ TEST(Ao, MemoFitsOnceAndBuildsTheTracerOnce) {
     RenderGraph graph;
     AoSetup as;
     as.scene = &rig.scene;
-    as.settings.model = "hegeman-shells";
+    as.settings.model = AoModel::HegemanShells;
     as.settings.shells = shells;
     as.memo = std::move(m);
     const int out = add_ao_shading_pass(graph, as);

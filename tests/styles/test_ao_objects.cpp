@@ -77,9 +77,9 @@ Rendered render(const Scene& scene, const std::string& model, const std::string&
   Camera camera = make_orbit_camera(scene.framing_sphere(), orbit, kSize, kSize);
   fit_camera_depth(camera, scene);  // as `sylva render --ground`
   AoSettings settings;
-  settings.model = model;
+  settings.model = parse_ao_model(model, "test");
   settings.alpha_rho = "0.3";
-  settings.solid_angle = solid_angle;
+  settings.solid_angle = solid_angle == "exact" ? SolidAngleModel::Exact : SolidAngleModel::Paper;
   Rendered r;
   r.ao = scene_ao_shading(scene, settings, 1);
   RasterRequest request;
@@ -255,7 +255,7 @@ TEST(AoObjects, GrassUnderATreeIsAlsoOccludedByTheCrown) {
 // The ground plane term is on only for flat ground: not without ground, not for a tilted one.
 TEST(AoObjects, GroundPlaneOnlyForFlatGround) {
   AoSettings s;
-  s.model = "hegeman-ellipsoid";
+  s.model = AoModel::HegemanEllipsoid;
   s.alpha_rho = "0.3";
   Scene scene = small_tree();
   EXPECT_FALSE(scene_ao_shading(scene, s, 1).ground_plane);
@@ -270,21 +270,21 @@ TEST(AoObjects, GroundPlaneOnlyForFlatGround) {
 TEST(AoObjects, SolidAngleParameter) {
   Scene scene = small_tree();
   AoSettings s;
-  s.model = "hegeman-sphere";
+  s.model = AoModel::HegemanSphere;
   s.alpha_rho = "0.3";
-  s.solid_angle = "paper";
+  s.solid_angle = SolidAngleModel::Paper;
   EXPECT_FALSE(scene_ao_shading(scene, s, 1).exact_solid_angle);
-  s.solid_angle = "exact";
+  s.solid_angle = SolidAngleModel::Exact;
   EXPECT_TRUE(scene_ao_shading(scene, s, 1).exact_solid_angle);
-  s.solid_angle = "exactly";
+  s.solid_angle = static_cast<SolidAngleModel>(7);  // neither (a program's cast)
   try {
     scene_ao_shading(scene, s, 1);
-    ADD_FAILURE() << "ao.solid_angle=exactly accepted";
+    ADD_FAILURE() << "ao.solid_angle that is neither exact nor paper accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "ao.solid_angle");
   }
   // Neither foliage nor grass: hegeman-* has nothing to fit.
-  s.solid_angle = "exact";
+  s.solid_angle = SolidAngleModel::Exact;
   Scene bare;
   bare.meshes.push_back(scene.meshes[1]);  // the bark alone
   bare.materials = scene.materials;

@@ -246,7 +246,7 @@ void check_toon_linear(const Style& style, const std::string& key, const Written
   in.position = w.position;
   in.shadow = w.shadow;
   ASSERT_FALSE(in.normal.empty() || in.albedo.empty() || in.position.empty() || in.ka.empty());
-  for (const char* mode : {"key", "sum"}) {
+  for (ToonLight mode : {ToonLight::Key, ToonLight::Sum}) {
     ToonParams p = style.params().toon;
     if (key != "toon.light") p.light = mode;
     const cv::Mat lin = toon_shade_linear(in, lights, view, p);
