@@ -43,9 +43,11 @@ demo: build
 perf: build
 	cd $(BUILD) && ctest -L perf --output-on-failure -V
 
-# Rewrites tests/golden/*.png from the current renderer (look at them before committing).
+# Rewrites tests/golden/*.png (whole renders) and tests/golden/passes/*.png (each pass's
+# output) from the current renderer (look at them before committing).
 golden: build
 	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/cli/test_cli --gtest_filter='Golden*'
+	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/styles/test_styles --gtest_filter='*PassGolden*'
 
 # Rewrites the README's generated tables (options and style parameters) from their
 # declarations; the docs.readme test fails when they are stale.

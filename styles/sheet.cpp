@@ -182,7 +182,10 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     }
     const std::string rkey = raster_key(style, setup.request, mode, fkey);
     if (!rasters.contains(rkey)) {
-      if (mode != NormalMode::Original) setup.shading = foliage[fkey];
+      if (mode != NormalMode::Original)
+        setup.shading = foliage[fkey];
+      else
+        setup.own_shading = true;  // another cell's raster pass may have realigned them
       // Only styles with AO read (and so run) the shell fitting; model none adds no node.
       const AoSettings& aos = style.params().ao;
       if (ao_model_of(aos.model) != AoShading::Model::None) {

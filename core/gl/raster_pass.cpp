@@ -70,6 +70,8 @@ GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
         if (setup.shading >= 0)
           setup.rasterizer->set_vertex_shading(
               *ctx.read<std::shared_ptr<const VertexShading>>(setup.shading));
+        else if (setup.own_shading)
+          setup.rasterizer->restore_vertex_shading();
         RasterRequest request = setup.request;
         if (setup.ao >= 0) request.ao = *ctx.read<std::shared_ptr<const AoShading>>(setup.ao);
         request.targets = 0;

@@ -23,6 +23,9 @@ struct RasterSetup {
   // A resource holding std::shared_ptr<const VertexShading> (the Luft preprocessing) the
   // pass reads and applies before drawing; -1 = draw the uploaded normals.
   int shading = -1;
+  // With shading = -1: put the scene's own normals and ka back first, which an earlier raster
+  // pass on the same rasterizer may have replaced (the cells of a contact sheet).
+  bool own_shading = false;
   // A resource holding std::shared_ptr<const AoShading> (the fitted AO shells, e.g.
   // npr/ao_pass.h) that replaces request.ao when the pass runs; -1 = request.ao as given.
   int ao = -1;

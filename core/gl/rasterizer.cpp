@@ -100,6 +100,12 @@ struct Rasterizer::Impl {
   std::vector<GLuint> textures;
   std::vector<glm::vec3> texture_means;  // linear mean colour of each texture's opaque texels
   std::vector<Material> materials;
+  // The scene's own normals, ka and orientation per scene mesh, for restore_vertex_shading.
+  std::vector<std::vector<glm::vec3>> own_normals;
+  std::vector<std::vector<float>> own_ka;
+  std::vector<char> own_outward;
+  std::vector<std::string> mesh_names;
+  bool shading_replaced = false;
   std::map<uint32_t, RasterProgram> programs;  // by target mask | alpha test << 16
   GLuint fbo = 0;
   GLuint depth_texture = 0;
@@ -118,6 +124,11 @@ struct Rasterizer::Impl {
     textures.clear();
     texture_means.clear();
     materials.clear();
+    own_normals.clear();
+    own_ka.clear();
+    own_outward.clear();
+    mesh_names.clear();
+    shading_replaced = false;
   }
 
   void release_fbo() {
@@ -378,6 +389,10 @@ void Rasterizer::upload(const Scene& scene) {
     if (mesh.material >= static_cast<int>(scene.materials.size())) {
       throw InputError("mesh '" + mesh.name + "'", "material index out of range");
     }
+    s.own_normals.push_back(mesh.normals);
+    s.own_ka.push_back(mesh.ka);
+    s.own_outward.push_back(mesh.outward_normals ? 1 : 0);
+    s.mesh_names.push_back(mesh.name);
     if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
     s.meshes.push_back(upload_mesh(mesh, static_cast<uint32_t>(i + 1)));
   }
@@ -394,6 +409,19 @@ void Rasterizer::set_vertex_shading(const VertexShading& shading) {
                     "mesh " + std::to_string(i));
     m.oriented_foliage = shading.oriented_foliage;
   }
+  s.shading_replaced = true;
+}
+
+void Rasterizer::restore_vertex_shading() {
+  Impl& s = *m_impl;
+  if (!s.shading_replaced) return;
+  s.context.make_current();
+  for (GpuMesh& m : s.meshes) {
+    const size_t i = m.object_id - 1;  // scene mesh index
+    replace_shading(m, s.own_normals[i], s.own_ka[i], s.mesh_names[i]);
+    m.oriented_foliage = s.own_outward[i] != 0;
+  }
+  s.shading_replaced = false;
 }
 
 GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,

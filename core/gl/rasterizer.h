@@ -55,6 +55,9 @@ class Rasterizer {
   void upload(const Scene& scene);
   // Replaces the uploaded normals/ka of the meshes `shading` covers; the rest keep theirs.
   void set_vertex_shading(const VertexShading& shading);
+  // Puts the uploaded scene's own normals and ka back after set_vertex_shading (nothing to do
+  // when they were not replaced).
+  void restore_vertex_shading();
   GBuffer render(const Camera& camera, const Lighting& lighting, const RasterRequest& request);
 
   // Targets allocated by the most recent render (for tests of the render graph's culling).

@@ -1,7 +1,7 @@
 // Ink composite and paper: pure pen drawing (exact white ground, exact line colour), paper
 // colour, the wash of the shaded colour, seeded grain (deterministic, resolution-independent),
-// transparent output, and the graph. With SYLVA_EDGES_LOOK_DIR set, also writes a
-// composite of analytic lines over a shaded disc as a PNG for a visual check.
+// transparent output, and the graph. scripts/look.sh writes a composite of analytic lines over
+// a shaded disc as a PNG for a visual check.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -172,41 +172,6 @@ TEST(InkComposite, GraphProducesTheFinalImage) {
   const cv::Mat direct = composite_ink(in.lines, in.color, make_paper(in.lines.size(), p.paper), p);
   ASSERT_EQ(image.type(), CV_8UC4);
   EXPECT_EQ(cv::norm(image, direct, cv::NORM_INF), 0.0);
-}
-
-TEST(InkComposite, WritesLookImageWhenAsked) {
-  const char* dir = std::getenv("SYLVA_EDGES_LOOK_DIR");
-  if (dir == nullptr) GTEST_SKIP() << "set SYLVA_EDGES_LOOK_DIR to write the look image";
-  // A shaded disc and a square, outlined by the edges pass from coverage and ids.
-  const int s = 512;
-  EdgeImages g;
-  g.color = cv::Mat::zeros(s, s, CV_8UC4);
-  g.id = cv::Mat::zeros(s, s, CV_32SC1);
-  for (int y = 0; y < s; ++y)
-    for (int x = 0; x < s; ++x) {
-      const double dx = x + 0.5 - 0.45 * s, dy = y + 0.5 - 0.5 * s, r = 0.3 * s;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 < r * r) {
-        const double shade = 0.3 + 0.7 * std::max(0.0, (-dx - dy) / (1.5 * r) + 0.5);
-        g.color.at<cv::Vec4b>(y, x) =
-            cv::Vec4b(uint8_t(60 * shade), uint8_t(170 * shade), uint8_t(110 * shade), 255);
-        g.id.at<int>(y, x) = dx * dy > 0 ? 1 : 2;
-      } else if (x > 0.6 * s && x < 0.9 * s && y > 0.15 * s && y < 0.45 * s) {
-        g.color.at<cv::Vec4b>(y, x) = cv::Vec4b(50, 120, 200, 255);
-        g.id.at<int>(y, x) = 3;
-      }
-    }
-  EdgeParams e;
-  e.depth = e.normal = false;
-  e.id = true;
-  InkParams p;
-  ASSERT_TRUE(parse_hex_color("#f3ead6", p.paper.color));
-  ASSERT_TRUE(parse_hex_color("#1d1a18", p.line_color));
-  p.paper.grain = 0.5f;
-  p.fill = 0.35f;
-  const cv::Mat lines = detect_edges(g, e);
-  const cv::Mat out = composite_ink(lines, g.color, make_paper(lines.size(), p.paper), p);
-  EXPECT_TRUE(cv::imwrite(std::string(dir) + "/ink-composite.png", out));
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 // Edges, line drawing: the width scales with the resolution; lines are antialiased and even in
 // width in every direction; width and opacity follow depth; min_width keeps small lines dark
 // and floors only; the same input gives the same bytes at any thread count; the graph reads only
-// what the enabled kinds need. With SYLVA_EDGES_LOOK_DIR set, also writes the cube's lines as PNGs
-// for a visual check. Scenes from tests/passes/edge_scenes.h.
+// what the enabled kinds need. Scenes from tests/passes/edge_scenes.h; scripts/look.sh writes
+// the cube's lines as PNGs for a visual check.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -321,32 +321,6 @@ TEST(Edges, GraphReadsOnlyWhatEnabledKindsNeed) {
     f.g.execute();
     EXPECT_EQ(f.ran, "normal;depth;id;color;");
   }
-}
-
-TEST(Edges, WritesLookImagesWhenAsked) {
-  const char* dir = std::getenv("SYLVA_EDGES_LOOK_DIR");
-  if (dir == nullptr) GTEST_SKIP() << "set SYLVA_EDGES_LOOK_DIR to write the look images";
-  const EdgeImages in = render(CubeScene{.sphere = true}, 1024);
-  EdgeParams p;
-  p.crease = true;
-  const cv::Mat lines = detect_edges(in, p);
-  cv::Mat ink;
-  lines.convertTo(ink, CV_8UC1, -255.0, 255.0);
-  EXPECT_TRUE(cv::imwrite(std::string(dir) + "/cube-edges.png", ink));
-  // Pen drawing over a light wash on grained paper.
-  InkParams look;
-  ASSERT_TRUE(parse_hex_color("#f4ecd8", look.paper.color));
-  ASSERT_TRUE(parse_hex_color("#1e1a16", look.line_color));
-  look.paper.grain = 0.6f;
-  look.fill = 0.3f;
-  EXPECT_TRUE(
-      cv::imwrite(std::string(dir) + "/cube-ink.png",
-                  composite_ink(lines, in.color, make_paper(lines.size(), look.paper), look)));
-  p.depth_width = 4.0f;
-  p.fade = 0.6f;
-  p.width = 4.0f;
-  detect_edges(in, p).convertTo(ink, CV_8UC1, -255.0, 255.0);
-  EXPECT_TRUE(cv::imwrite(std::string(dir) + "/cube-edges-depth.png", ink));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Toon shading's lights and graph (Decaudin 1996): world-space lights follow the view, the key
 // and summed lights, the specular band, cast shadows from a synthetic shadow map with a
 // slope-scaled bias, and graph culling (no ID buffer; ka and shadows read only when needed).
-// With SYLVA_TOON_LOOK_DIR set, also writes a ramp and a sphere as PNGs for a visual check.
+// scripts/look.sh writes a ramp and spheres as PNGs for a visual check.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -214,71 +214,6 @@ TEST(Toon, GraphSkipsKaAtWeightZeroAndReadsWhatShadowsNeed) {
     f.g.execute();
     EXPECT_EQ(f.made, "normal,albedo,ka,position,depth,");
   }
-}
-
-// Not a check: with SYLVA_TOON_LOOK_DIR set, writes ramp.png and sphere.png there (over a
-// light grey ground) for looking at.
-TEST(Toon, WritesLookImagesWhenAsked) {
-  const char* dir = std::getenv("SYLVA_TOON_LOOK_DIR");
-  if (!dir) GTEST_SKIP() << "set SYLVA_TOON_LOOK_DIR to write the look images";
-  auto over_grey = [](const cv::Mat& bgra) {
-    cv::Mat out(bgra.size(), CV_8UC3);
-    for (int y = 0; y < bgra.rows; ++y)
-      for (int x = 0; x < bgra.cols; ++x) {
-        const cv::Vec4b c = bgra.at<cv::Vec4b>(y, x);
-        const float a = float(c[3]) / 255.0f;
-        for (int ch = 0; ch < 3; ++ch)
-          out.at<cv::Vec3b>(y, x)[ch] = encode(decode(c[ch]) + (1.0f - a) * decode(225));
-      }
-    return out;
-  };
-  auto tile = [](const cv::Mat& m, int rows) {
-    cv::Mat t;
-    cv::repeat(m, rows, 1, t);
-    return t;
-  };
-  std::vector<cv::Mat> rows;
-  for (const char* setting : {"bands=3", "bands=5", "thresholds=0.2,0.6", "specular"}) {
-    ToonParams p;
-    ParamSet set;
-    bind_toon_params(set, p);
-    const std::string s = setting;
-    if (s == "specular") {
-      p.specular = true;
-      p.specular_threshold = 0.9f;
-    } else {
-      const size_t eq = s.find('=');
-      set.set_from_string("toon." + s.substr(0, eq), s.substr(eq + 1), "look");
-    }
-    rows.push_back(tile(toon_shade(ramp(512, 1), headlight(), glm::mat4(1.0f), p), 40));
-  }
-  cv::Mat ramp_img;
-  cv::vconcat(rows, ramp_img);
-  ASSERT_TRUE(cv::imwrite(std::string(dir) + "/ramp.png", over_grey(ramp_img)));
-
-  std::vector<cv::Mat> spheres;
-  const glm::mat4 view = glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0));
-  for (int variant = 0; variant < 4; ++variant) {
-    ToonParams p;
-    if (variant == 1) {
-      p.bands = 4;
-      p.specular = true;
-    }
-    if (variant == 2) {
-      p.light = ToonLight::Sum;
-      p.ka_weight = 1.0f;
-    }
-    if (variant == 3) {
-      p.shadow = 0.7f;
-      p.shadow_tint = glm::vec3(0.35f, 0.45f, 0.9f);
-      p.thresholds = "0.15,0.7";
-      p.tones = "0.6,0.85,1.05";
-    }
-    spheres.push_back(toon_shade(sphere(256), Lighting::three_point(), view, p));
-  }
-  cv::Mat sphere_img;
-  cv::hconcat(spheres, sphere_img);
-  ASSERT_TRUE(cv::imwrite(std::string(dir) + "/sphere.png", over_grey(sphere_img)));
 }
 
 }  // namespace

@@ -1,14 +1,11 @@
 // Watercolor pass (Bousseau et al. 2006; Luft & Deussen 2006) on synthetic G-buffers: the
-// pigment formula, determinism, wash edges, edge darkening, glazing,
-// world-space turbulence under a rotating view, the paper, bad input and the graph node.
-// With SYLVA_WATER_LOOK=<folder> the Look test also writes PNGs of synthetic trees there.
+// pigment formula, determinism, wash edges, edge darkening, glazing, world-space turbulence
+// under a rotating view, the paper, bad input and the graph node.
+// Scenes from tests/passes/watercolor_scenes.h; scripts/look.sh writes the look images.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -20,105 +17,12 @@
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "passes/watercolor.h"
+#include "tests/passes/watercolor_scenes.h"
 
 namespace sylva::test {
 namespace {
 
-float srgb_encode(float l) {
-  l = std::clamp(l, 0.0f, 1.0f);
-  return l <= 0.0031308f ? l * 12.92f : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
-}
-
-// A synthetic G-buffer: pinhole camera (focal f px, principal point at the centre), positions
-// in view space (camera looks along -Z), depth = -z.
-struct Scene {
-  WatercolorImages img;
-  float focal = 0;
-};
-
-Scene empty_scene(cv::Size size) {
-  Scene s;
-  s.img.color = cv::Mat(size, CV_8UC4, cv::Scalar(0, 0, 0, 0));
-  s.img.albedo = cv::Mat(size, CV_8UC4, cv::Scalar(0, 0, 0, 0));
-  s.img.id = cv::Mat(size, CV_32SC1, cv::Scalar(0));
-  s.img.depth = cv::Mat(size, CV_32FC1, cv::Scalar(0));
-  s.img.position = cv::Mat(size, CV_32FC3, cv::Scalar(0, 0, 0));
-  s.focal = float(size.width);
-  return s;
-}
-
-void set_pixel(Scene& s, int x, int y, int32_t id, cv::Vec3f bgr_linear, float depth) {
-  const cv::Size size = s.img.id.size();
-  s.img.id.at<int32_t>(y, x) = id;
-  s.img.depth.at<float>(y, x) = depth;
-  const float u = (float(x) + 0.5f - 0.5f * float(size.width)) / s.focal;
-  const float v = (float(y) + 0.5f - 0.5f * float(size.height)) / s.focal;
-  s.img.position.at<cv::Vec3f>(y, x) = cv::Vec3f(u * depth, -v * depth, -depth);
-  cv::Vec4b c;
-  for (int ch = 0; ch < 3; ++ch)
-    c[ch] = uchar(std::lround(srgb_encode(bgr_linear[ch]) * 255.0f));
-  c[3] = 255;
-  s.img.color.at<cv::Vec4b>(y, x) = c;
-  s.img.albedo.at<cv::Vec4b>(y, x) = c;
-}
-
-// A disc of one id, its depth bulging towards the viewer like a sphere of leaves.
-void add_disc(Scene& s, cv::Point2f centre, float radius, int32_t id, cv::Vec3f bgr, float depth) {
-  const cv::Size size = s.img.id.size();
-  for (int y = 0; y < size.height; ++y)
-    for (int x = 0; x < size.width; ++x) {
-      const float dx = float(x) + 0.5f - centre.x, dy = float(y) + 0.5f - centre.y;
-      const float r2 = (dx * dx + dy * dy) / (radius * radius);
-      if (r2 > 1.0f) continue;
-      const float z = depth - 0.1f * depth * std::sqrt(1.0f - r2);
-      const float cur = s.img.depth.at<float>(y, x);
-      if (cur > 0.0f && cur <= z) continue;
-      set_pixel(s, x, y, id, bgr, z);
-    }
-}
-
-// A clump of small leaves (ellipses) around a centre: per-leaf shading and depth jitter, so
-// the clusters have the detail a real render has.
-void add_clump(Scene& s, cv::RNG& rng, cv::Point2f centre, float radius, int32_t id, cv::Vec3f bgr,
-               float depth, int leaves, float leaf_size) {
-  const cv::Size size = s.img.id.size();
-  for (int i = 0; i < leaves; ++i) {
-    const float a = rng.uniform(0.0f, 6.2831853f);
-    const float r = radius * std::sqrt(rng.uniform(0.0f, 1.0f));
-    const cv::Point2f c(centre.x + r * std::cos(a), centre.y + r * std::sin(a));
-    const float len = leaf_size * rng.uniform(0.7f, 1.3f), wid = len * 0.45f;
-    const float ang = rng.uniform(0.0f, 3.14159265f);
-    const float ca = std::cos(ang), sa = std::sin(ang);
-    // Outer leaves nearer and brighter (what the Luft illumination does to a clump).
-    const float rr = r / radius;
-    const float z = depth - 0.15f * depth * std::sqrt(std::max(0.0f, 1.0f - rr * rr)) +
-                    rng.uniform(-0.01f, 0.01f) * depth;
-    const float shade = rng.uniform(0.6f, 1.25f) * (0.75f + 0.35f * (1.0f - rr));
-    const int x0 = std::max(0, int(c.x - len)), x1 = std::min(size.width - 1, int(c.x + len));
-    const int y0 = std::max(0, int(c.y - len)), y1 = std::min(size.height - 1, int(c.y + len));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const float dx = float(x) + 0.5f - c.x, dy = float(y) + 0.5f - c.y;
-        const float u = (dx * ca + dy * sa) / len, v = (-dx * sa + dy * ca) / wid;
-        if (u * u + v * v > 1.0f) continue;
-        const float cur = s.img.depth.at<float>(y, x);
-        if (cur > 0.0f && cur <= z) continue;
-        // The leaf's midrib a little darker.
-        const float rib = std::abs(v) < 0.15f ? 0.85f : 1.0f;
-        set_pixel(s, x, y, id, bgr * (shade * rib), z);
-      }
-  }
-}
-
-void add_rect(Scene& s, cv::Rect r, int32_t id, cv::Vec3f bgr, float depth) {
-  r &= cv::Rect(cv::Point(0, 0), s.img.id.size());
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) {
-      const float cur = s.img.depth.at<float>(y, x);
-      if (cur > 0.0f && cur <= depth) continue;
-      set_pixel(s, x, y, id, bgr, depth);
-    }
-}
+using Scene = WatercolorScene;
 
 WatercolorParams plain_params() {
   WatercolorParams p;
@@ -384,121 +288,6 @@ TEST(Watercolor, GraphPassReadsOnlyWhatItUses) {
     EXPECT_EQ(g.pass_live("make position"), turbulence);
     g.execute();
     EXPECT_TRUE(identical(g.get<cv::Mat>(out), watercolor(s.img, kIdentity, p)));
-  }
-}
-
-// --- Looking at it ------------------------------------------------------------------------
-
-Scene synthetic_tree(cv::Size size, int clusters, int leaves_per_cluster, uint64_t seed) {
-  Scene s = empty_scene(size);
-  cv::RNG rng(seed);
-  const float w = float(size.width), h = float(size.height);
-  // Trunk and two limbs (one shared non-foliage id).
-  const cv::Vec3f bark(0.05f, 0.08f, 0.12f);
-  add_rect(s, cv::Rect(int(0.47f * w), int(0.55f * h), int(0.06f * w), int(0.45f * h)), 1000, bark,
-           6.0f);
-  add_rect(s, cv::Rect(int(0.36f * w), int(0.52f * h), int(0.12f * w), int(0.018f * h)), 1000, bark,
-           6.1f);
-  add_rect(s, cv::Rect(int(0.52f * w), int(0.47f * h), int(0.14f * w), int(0.018f * h)), 1000, bark,
-           5.9f);
-  for (int c = 0; c < clusters; ++c) {
-    const float a = rng.uniform(0.0f, 6.2831853f);
-    const float r = std::sqrt(rng.uniform(0.0f, 1.0f));
-    const cv::Point2f centre(0.5f * w + 0.33f * w * r * std::cos(a),
-                             0.42f * h + 0.3f * h * r * std::sin(a));
-    const float radius = w * rng.uniform(0.05f, 0.09f);
-    const float depth = rng.uniform(4.0f, 8.0f);
-    // Nearer clusters lighter and warmer, as the Luft illumination makes them.
-    const float light = 0.6f + 0.5f * (8.0f - depth) / 4.0f;
-    const cv::Vec3f green(rng.uniform(0.02f, 0.06f) * light, rng.uniform(0.16f, 0.3f) * light,
-                          rng.uniform(0.05f, 0.14f) * light);
-    add_clump(s, rng, centre, radius, c + 1, green, depth, leaves_per_cluster,
-              w * rng.uniform(0.012f, 0.02f));
-  }
-  return s;
-}
-
-TEST(Watercolor, Look) {
-  const char* dir = std::getenv("SYLVA_WATER_LOOK");
-  if (!dir) GTEST_SKIP() << "set SYLVA_WATER_LOOK=<folder> to write the look images";
-  std::filesystem::create_directories(dir);
-  const std::string d = dir;
-  auto save = [&](const std::string& name, const cv::Mat& m) {
-    ASSERT_TRUE(cv::imwrite(d + "/" + name, m));
-  };
-  {
-    Scene s = empty_scene({600, 450});
-    add_disc(s, {230, 210}, 130, 1, {0.55f, 0.25f, 0.05f}, 6.0f);
-    add_disc(s, {370, 230}, 120, 2, {0.05f, 0.35f, 0.75f}, 4.0f);
-    add_disc(s, {300, 320}, 90, 3, {0.15f, 0.55f, 0.25f}, 3.0f);
-    WatercolorParams p;
-    save("discs.png", watercolor(s.img, kIdentity, p));
-    p.edge_softness = 1.0f;
-    save("discs_soft.png", watercolor(s.img, kIdentity, p));
-    p.edge_softness = 0.0f;
-    save("discs_hard.png", watercolor(s.img, kIdentity, p));
-    cv::Mat color;
-    cv::cvtColor(s.img.color, color, cv::COLOR_BGRA2BGR);
-    save("discs_input.png", color);
-  }
-  {
-    const Scene s = synthetic_tree({1024, 1024}, 64, 700, 11);
-    cv::Mat color;
-    cv::cvtColor(s.img.color, color, cv::COLOR_BGRA2BGR);
-    save("tree_input.png", color);
-    WatercolorParams p;
-    p.reference_length = 3.0f;
-    (void)watercolor(s.img, kIdentity, p);  // warm-up
-    // CPU time on one thread is what a loaded machine still measures reliably; wall time on
-    // all threads is printed too.
-    auto cpu_ms = [] {
-      timespec t{};
-      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-      return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-    };
-    cv::Mat out;
-    for (int threads : {1, cv::getNumberOfCPUs()}) {
-      const int before = cv::getNumThreads();
-      cv::setNumThreads(threads);
-      std::vector<double> wall, cpu;
-      for (int i = 0; i < 5; ++i) {
-        const double c0 = cpu_ms();
-        const auto t0 = std::chrono::steady_clock::now();
-        out = watercolor(s.img, kIdentity, p);
-        wall.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
-        cpu.push_back(cpu_ms() - c0);
-      }
-      cv::setNumThreads(before);
-      std::sort(wall.begin(), wall.end());
-      std::sort(cpu.begin(), cpu.end());
-      std::printf(
-          "watercolor 1024x1024, 64 clusters, %d thread(s): median wall %.1f ms, CPU %.1f ms\n",
-          threads, wall[2], cpu[2]);
-    }
-    save("tree.png", out);
-    // 2x crops to judge grain, rims, wobble and detail.
-    const cv::Rect crop(470, 280, 300, 300);
-    auto zoom = [&](const cv::Mat& m) {
-      cv::Mat z;
-      cv::resize(m(crop), z, cv::Size(), 2, 2, cv::INTER_NEAREST);
-      return z;
-    };
-    save("crop_tree.png", zoom(out));
-    save("crop_input.png", zoom(color));
-    p.edge_softness = 0.9f;
-    p.blur = 8;
-    const cv::Mat wet = watercolor(s.img, kIdentity, p);
-    save("tree_wet.png", wet);
-    save("crop_wet.png", zoom(wet));
-    p = WatercolorParams();
-    p.reference_length = 3.0f;
-    p.detail = 1.0f;
-    p.blur = 3;
-    const cv::Mat detailed = watercolor(s.img, kIdentity, p);
-    save("tree_detail.png", detailed);
-    save("crop_detail.png", zoom(detailed));
   }
 }
 

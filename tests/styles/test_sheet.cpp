@@ -140,6 +140,20 @@ TEST(Sheet, CellsShareBuffersAndPreprocessingAndMatchTheirRenders) {
   EXPECT_FALSE(same(graph.get<cv::Mat>(plan.outputs[2]), graph.get<cv::Mat>(plan.outputs[3])));
 }
 
+// A cell that keeps the model's normals draws them, even after a cell of the same sheet (or an
+// earlier graph on the same rasterizer) replaced them with realigned ones.
+TEST(Sheet, ModelNormalsComeBackAfterACellRealignedThem) {
+  SheetRig rig;
+  const Style standard("standard"), expressive("expressive");
+  const cv::Mat first = rig.alone(standard).clone();
+  RenderGraph graph;
+  const SheetPlan plan = add_sheet_passes(graph, {&expressive, &standard}, rig.sheet);
+  graph.execute();
+  EXPECT_FALSE(same(graph.get<cv::Mat>(plan.outputs[0]), first));  // realigned: another picture
+  EXPECT_TRUE(same(graph.get<cv::Mat>(plan.outputs[1]), first));
+  EXPECT_TRUE(same(rig.alone(standard), first));
+}
+
 TEST(Sheet, WrapKeepsLinesInsideTheWidth) {
   const std::vector<std::string> items = {"edges.width=2", "edges.normal_threshold=50",
                                           "ink.fill=0.25", "style.normals=realigned-scaled"};
