@@ -138,7 +138,7 @@ Action add_render_command(CLI::App& app) {
     release_frame(frame);
     if (vector)
       write_vector_drawing(o->out, graph.get<StrokeDrawing>(plan.strokes[0]),
-                           vector_page(*style, o->view, o->dpi));
+                           vector_page(*style, o->view.background == "transparent", o->dpi));
     else
       write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]), o->dpi, bit_depth);
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,

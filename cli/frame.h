@@ -1,5 +1,5 @@
-// What the rendering commands (render, buffers, compare) share: the loaded and uploaded
-// scene of one view, the style options, and turning a style's image into a file.
+// What the rendering commands (render, buffers, compare, turntable) share: the loaded and
+// uploaded scene of one view and the style options (the files: styles/style_files.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,9 +11,9 @@
 #include "cli/common_options.h"
 #include "cli/illumination_options.h"
 #include "core/gl/raster_pass.h"
-#include "core/io/svg_writer.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
+#include "styles/style_files.h"
 
 namespace sylva::cli {
 
@@ -43,21 +43,9 @@ std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& nam
 // cache and outputs and the seed comes from the scene options.
 SheetScene sheet_scene(const Frame& frame, const FoliageRun& run, uint64_t seed);
 
-// Writes a style's BGRA image as .png or .tiff (with alpha), .jpg (alpha dropped) or .exr
-// (linear half R, G, B premultiplied, A), atomically; `dpi` > 0 goes into a PNG's pHYs, a
-// TIFF's resolution or an EXR's xDensity. bit_depth 16 (PNG, TIFF) widens the 8-bit values
-// (v x 257).
-void write_styled_image(const std::string& path, const cv::Mat& bgra, double dpi = 0.0,
-                        int bit_depth = 8);
-
 // Vector output (.svg, .pdf): whether `path` asks for it; InputError(option, ...) naming the
 // styles that can when `style` draws no strokes.
 bool is_vector_path(const std::string& path);
 void require_line_style(const Style& style, const std::string& option);
-// The page of a style's vector drawing: its paper (ink.paper_color; none when ink.transparent
-// or the view's background is "transparent") and the dpi.
-VectorPage vector_page(const Style& style, const ViewOptions& view, double dpi);
-// Writes a drawing as .svg or .pdf (by the extension), atomically.
-void write_vector_drawing(const std::string& path, const StrokeDrawing& d, const VectorPage& page);
 
 }  // namespace sylva::cli

@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace sylva::cli {
+namespace sylva {
 
 // "frame-00012.png": the name of frame `frame` (0 .. 99999) in a frame folder.
 std::string frame_file_name(int frame, const std::string& format = "png");
@@ -22,4 +22,4 @@ std::string frame_problem(const std::string& path, const std::string& format);
 int remove_stale_frame_temporaries(const std::string& dir, int begin, int end,
                                    const std::string& format);
 
-}  // namespace sylva::cli
+}  // namespace sylva

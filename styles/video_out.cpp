@@ -1,4 +1,4 @@
-#include "cli/video_out.h"
+#include "styles/video_out.h"
 
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace sylva::cli {
+namespace sylva {
 namespace {
 
 // FFmpeg's first error line since the last call, as "; FFmpeg: <line>", or "".
@@ -84,4 +84,4 @@ void VideoOut::finish() {
   m_impl->done = true;
 }
 
-}  // namespace sylva::cli
+}  // namespace sylva

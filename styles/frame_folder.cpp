@@ -1,4 +1,4 @@
-#include "cli/frame_folder.h"
+#include "styles/frame_folder.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace sylva::cli {
+namespace sylva {
 
 std::string frame_file_name(int frame, const std::string& format) {
   char name[32];
@@ -73,4 +73,4 @@ int remove_stale_frame_temporaries(const std::string& dir, int begin, int end,
   return removed;
 }
 
-}  // namespace sylva::cli
+}  // namespace sylva

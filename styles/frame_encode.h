@@ -7,7 +7,7 @@
 
 #include <string>
 
-namespace sylva::cli {
+namespace sylva {
 
 struct EncodeRequest {
   std::string dir;  // the frame folder
@@ -22,7 +22,8 @@ struct EncodeResult {
 };
 
 // Checks every frame first (missing, partial or of another size: InputError naming it), then
-// encodes them in order.
+// encodes them in order into r.out (an .mp4 or a .gif, atomically). r.fps and r.frames must be
+// in their ranges (the caller checks them).
 EncodeResult encode_frames(const EncodeRequest& r);
 
-}  // namespace sylva::cli
+}  // namespace sylva

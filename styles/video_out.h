@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-namespace sylva::cli {
+namespace sylva {
 
 class VideoOut {
  public:
@@ -27,4 +27,4 @@ class VideoOut {
   std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace sylva::cli
+}  // namespace sylva
