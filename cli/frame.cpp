@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
-#include "core/gl/depth_range.h"
 #include "core/io/exr_writer.h"
 #include "core/io/image_io.h"
 #include "core/io/pdf_writer.h"
@@ -21,8 +20,7 @@ std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
   auto f = std::make_unique<Frame>();
   f->scene = load_scene_for_cli(so);
   apply_ground_option(f->scene, vo);
-  f->setup.camera = make_orbit_camera(f->scene.framing_sphere(), vo.orbit, vo.width, vo.height);
-  fit_camera_depth(f->setup.camera, f->scene);
+  f->setup.camera = view_camera(f->scene, vo);
   f->context = create_gl_context();
   f->rasterizer = std::make_unique<Rasterizer>(*f->context);
   f->rasterizer->upload(f->scene);

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/scene/instances.h"
 #include "npr/ao_reference.h"
 #include "npr/ao_uniforms.h"
 
@@ -58,7 +59,10 @@ AoShading::Model ao_model_of(const std::string& model) {
                                    "hegeman-ellipsoid, hegeman-shells, raytraced)");
 }
 
-AoReferenceScene make_scene_tracer(const Scene& scene) {
+AoReferenceScene make_scene_tracer(const Scene& input) {
+  // Embree traces world-space triangles: an instanced scene is flattened.
+  const Scene flat = input.instanced() ? flatten(input) : Scene{};
+  const Scene& scene = input.instanced() ? flat : input;
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> uvs;
   std::vector<uint32_t> indices;
@@ -85,7 +89,7 @@ AoReferenceScene make_scene_tracer(const Scene& scene) {
     triangle_material.insert(triangle_material.end(), m.triangle_count(), cutout);
   }
   if (!any_cutout) return AoReferenceScene(positions, indices);
-  const Scene* s = &scene;
+  const Scene* s = &input;  // materials and textures: the same in the flattened scene
   auto materials = std::make_shared<const std::vector<int>>(std::move(triangle_material));
   auto alpha = [s, materials](uint32_t triangle, glm::vec2 uv) -> float {
     const Material& mat = s->materials[size_t((*materials)[triangle])];
@@ -121,6 +125,8 @@ std::vector<glm::vec3> foliage_vertices(const Scene& scene) {
 }
 
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t seed) {
+  // The shells and the crown are fitted in world space: to the flattened instances.
+  if (scene.instanced()) return scene_ao_shading(flatten(scene), s, seed);
   AoShading ao;
   ao.model = ao_model_of(s.model);
   ao.constant = s.constant;

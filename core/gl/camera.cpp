@@ -79,6 +79,31 @@ Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int wi
   return cam;
 }
 
+Camera make_file_camera(const SceneCamera& file, const Sphere& sphere, int width, int height) {
+  validate(OrbitParams{}, width, height);
+  Camera cam;
+  cam.width = width;
+  cam.height = height;
+  cam.ortho = file.orthographic;
+  cam.view = glm::inverse(file.to_world);
+  cam.eye = glm::vec3(file.to_world[3]);
+  cam.near_plane = file.znear;
+  cam.far_plane = file.zfar;
+  if (cam.far_plane <= 0.0f) {
+    const float reach =
+        sphere.empty() ? 0.0f : glm::length(sphere.centre - cam.eye) + sphere.radius;
+    cam.far_plane = std::max(reach * kMargin, 2.0f * cam.near_plane);
+  }
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (cam.ortho) {
+    const float half_h = file.ymag, half_w = half_h * aspect;
+    cam.proj = glm::ortho(-half_w, half_w, -half_h, half_h, cam.near_plane, cam.far_plane);
+  } else {
+    cam.proj = glm::perspective(file.yfov, aspect, cam.near_plane, cam.far_plane);
+  }
+  return cam;
+}
+
 Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point,
                          int size) {
   SYLVA_CHECK(size >= 1 && size <= kMaxImageSide, "make_light_camera: bad size");

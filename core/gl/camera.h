@@ -35,6 +35,14 @@ struct Camera {
 Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int width, int height);
 Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
+// A camera stored in the file (Scene::cameras) for a width x height image: its view is the
+// inverse of its node's rigid transform; perspective keeps the vertical field of view and
+// orthographic the half height ymag, the width following the image's aspect ratio (the file's
+// aspect ratio is not used); near and far are the file's znear and zfar, and an infinite far
+// (zfar 0) becomes the far side of `sphere` (the scene's framing sphere) seen from the eye,
+// at least 2 x znear. Throws InputError("--size", ...) for a size outside [1, 16384].
+Camera make_file_camera(const SceneCamera& camera, const Sphere& sphere, int width, int height);
+
 // A square camera seeing the whole sphere from a light, for shadow maps: orthographic along
 // `toward_light` (world direction from the scene toward a directional light, any length
 // > 0), or, when `point` is set, perspective from the world position `toward_light` aimed at

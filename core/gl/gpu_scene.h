@@ -19,7 +19,8 @@ struct GpuMesh {
   std::vector<GLuint> buffers;
   GLsizei index_count = 0;
   int material = -1;
-  uint32_t object_id = 0;
+  uint32_t object_id = 0;    // the id buffer's object id (instanced: index in its plant + 1)
+  uint32_t scene_index = 0;  // index into Scene::meshes
   bool has_normals = false;
   size_t vertex_count = 0;
   GLuint normal_buffer = 0;  // replaceable (replace_shading); 0 = none

@@ -1,6 +1,7 @@
-// The raster pass: one indexed draw per mesh into a framebuffer with only the requested
-// targets attached (MRT). Colour is Luft et al. Eq. 1 local illumination: ambient * ka +
-// sum over lights of diffuse + specular, with ka decoded from the normal's length and the
+// The raster pass: one indexed draw per mesh (an instanced scene: per plant mesh, instanced
+// over the plant's visible instances, core/gl/instance_draws.h) into a framebuffer with only
+// the requested targets attached (MRT). Colour is Luft et al. Eq. 1 local illumination: ambient *
+// ka + sum over lights of diffuse + specular, with ka decoded from the normal's length and the
 // normal re-normalised in the vertex shader. Leaves are drawn double-sided (normal flipped
 // with gl_FrontFacing); alpha-MASK materials discard fragments below the cutoff from the
 // base-colour texture's alpha, so every target follows the leaf shape; BLEND materials are
@@ -59,6 +60,8 @@ class Rasterizer {
 
   // Targets allocated by the most recent render (for tests of the render graph's culling).
   TargetMask last_allocated_targets() const;
+  // Instances the most recent render drew (those in view; a flat scene: 1).
+  size_t last_drawn_instances() const;
 
  private:
   struct Impl;

@@ -16,11 +16,19 @@ layout(location = 3) in vec4 a_color;
 layout(location = 4) in uvec2 a_ids;
 layout(location = 5) in uint a_role;
 layout(location = 6) in float a_ka;  // a separate ambient coefficient, or -1: use |a_normal|
+#ifdef INSTANCED
+// Per instance (core/gl/instance_draws.h): plant space -> world, its normal matrix, and the
+// bases added to the plant's own primitive, foliage cluster and object ids.
+layout(location = 7) in mat4 a_model;
+layout(location = 11) in mat3 a_normal_matrix;
+layout(location = 14) in uvec3 a_id_base;
+uniform uint u_branch_cluster;  // the one cluster id of every instance's non-foliage
+#endif
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
-uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object
-uniform uint u_object_id;   // mesh index + 1
+uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object, 3 material
+uniform uint u_object_id;   // mesh index + 1 (instanced: index in its plant + 1), or material id
 uniform uint u_only_cluster;  // 0 = draw everything, else only this cluster's triangles
 
 out vec3 v_view_pos;
@@ -33,23 +41,37 @@ flat out uint v_id;
 flat out uint v_role;
 
 void main() {
-  vec4 view_pos = u_view * vec4(a_position, 1.0);
   // Luft et al. Sec. 3.2: ka is stored as the normal's length; unit normals mean ka = 1.
   // A separate ka attribute, when the mesh has one, takes precedence.
   float len = length(a_normal);
   v_ka = clamp(a_ka >= 0.0 ? a_ka : len, 0.0, 1.0);
+#ifdef INSTANCED
+  vec3 world_pos = (a_model * vec4(a_position, 1.0)).xyz;
+  vec3 world_normal = a_normal_matrix * a_normal;
+  float world_len = length(world_normal);
+  vec3 unit_normal = len > 1e-20 && world_len > 1e-20 ? world_normal / world_len : vec3(0.0);
+  uvec2 ids = uvec2(a_ids.x + a_id_base.x, a_role == 0u || u_branch_cluster == 0u
+                                               ? a_ids.y + a_id_base.y : u_branch_cluster);
+  uint object_id = u_object_id + a_id_base.z;
+#else
+  vec3 world_pos = a_position;
+  vec3 unit_normal = len > 1e-20 ? a_normal / len : vec3(0.0);
+  uvec2 ids = a_ids;
+  uint object_id = u_object_id;
+#endif
+  vec4 view_pos = u_view * vec4(world_pos, 1.0);
   // The view matrix is rigid, so its upper 3x3 rotates normals.
-  v_normal = mat3(u_view) * (len > 1e-20 ? a_normal / len : vec3(0.0));
+  v_normal = mat3(u_view) * unit_normal;
   v_view_pos = view_pos.xyz;
-  v_world_pos = a_position;
+  v_world_pos = world_pos;
   v_uv = a_uv;
   v_color = a_color;
-  v_id = u_id_kind == 0 ? a_ids.x : (u_id_kind == 1 ? a_ids.y : u_object_id);
+  v_id = u_id_kind == 0 ? ids.x : (u_id_kind == 1 ? ids.y : (u_id_kind == 2 ? object_id : u_object_id));
   v_role = a_role;
   gl_Position = u_proj * view_pos;
   // Every vertex of a triangle carries its cluster, so moving them all outside the clip
   // volume drops the triangle before rasterisation.
-  if (u_only_cluster != 0u && a_ids.y != u_only_cluster) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+  if (u_only_cluster != 0u && ids.y != u_only_cluster) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
 )GLSL";
 
@@ -345,8 +367,9 @@ std::string info_log(GLuint object, bool is_program) {
 
 }  // namespace
 
-std::string raster_vertex_source() {
-  return std::string("#version 450 core\n") + kVertexBody;
+std::string raster_vertex_source(bool instanced) {
+  return std::string("#version 450 core\n") + (instanced ? "#define INSTANCED 1\n" : "") +
+         kVertexBody;
 }
 
 std::string raster_fragment_source(TargetMask targets, bool alpha_test) {
@@ -394,10 +417,10 @@ GLuint link_program(GLuint vertex, GLuint fragment, const std::string& name) {
   return program;
 }
 
-GLuint build_raster_program(TargetMask targets, bool alpha_test) {
-  const std::string name =
-      "raster pass (targets " + std::to_string(targets) + (alpha_test ? ", alpha test)" : ")");
-  GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(), name + " vertex");
+GLuint build_raster_program(TargetMask targets, bool alpha_test, bool instanced) {
+  const std::string name = "raster pass (targets " + std::to_string(targets) +
+                           (alpha_test ? ", alpha test" : "") + (instanced ? ", instanced)" : ")");
+  GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(instanced), name + " vertex");
   GLuint fs = 0;
   try {
     fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test),
@@ -409,15 +432,16 @@ GLuint build_raster_program(TargetMask targets, bool alpha_test) {
   return link_program(vs, fs, name);
 }
 
-RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
+RasterProgram make_raster_program(TargetMask targets, bool alpha_test, bool instanced) {
   RasterProgram p;
-  p.id = build_raster_program(targets, alpha_test);
+  p.id = build_raster_program(targets, alpha_test, instanced);
   auto loc = [&](const char* name) { return glGetUniformLocation(p.id, name); };
   p.view = loc("u_view");
   p.proj = loc("u_proj");
   p.id_kind = loc("u_id_kind");
   p.only_cluster = loc("u_only_cluster");
   p.object_id = loc("u_object_id");
+  p.branch_cluster = loc("u_branch_cluster");
   p.base_color = loc("u_base_color");
   p.has_texture = loc("u_has_texture");
   p.texture = loc("u_texture");

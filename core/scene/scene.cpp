@@ -1,5 +1,7 @@
 #include "core/scene/scene.h"
 
+#include "core/scene/instances.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,19 +53,58 @@ std::vector<std::string> SceneReport::warning_lines() const {
   return out;
 }
 
+namespace {
+
+// Calls fn(world position) for every vertex of a triangle passing keep(mesh, t), once per
+// instance of its plant. A flat scene's positions are passed as stored (no arithmetic); an
+// instance's go through the transform in double, as the glTF reader flattens nodes.
+template <class Keep, class Fn>
+void for_each_world_vertex(const Scene& scene, Keep keep, Fn fn) {
+  auto used = [&](const Mesh& m) {
+    std::vector<char> u(m.positions.size(), 0);
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      if (keep(m, t))
+        for (int k = 0; k < 3; ++k)
+          u[m.indices[3 * t + size_t(k)]] = 1;
+    return u;
+  };
+  if (!scene.instanced()) {
+    for (const Mesh& m : scene.meshes) {
+      const std::vector<char> u = used(m);
+      for (size_t v = 0; v < u.size(); ++v)
+        if (u[v]) fn(m.positions[v]);
+    }
+    return;
+  }
+  for (const Plant& plant : scene.plants) {
+    std::vector<glm::vec3> points;
+    for (uint32_t mi : plant.meshes) {
+      const Mesh& m = scene.meshes[mi];
+      const std::vector<char> u = used(m);
+      for (size_t v = 0; v < u.size(); ++v)
+        if (u[v]) points.push_back(m.positions[v]);
+    }
+    const auto p = uint32_t(&plant - scene.plants.data());
+    for (const Instance& inst : scene.instances) {
+      if (inst.plant != p) continue;
+      const glm::dmat4 t(inst.transform);
+      for (const glm::vec3& q : points)
+        fn(glm::vec3(t * glm::dvec4(q, 1.0)));
+    }
+  }
+}
+
+}  // namespace
+
 Bounds Scene::bounds() const {
   Bounds b;
-  for (const Mesh& m : meshes)
-    for (uint32_t i : m.indices)
-      b.extend(m.positions[i]);
+  for_each_world_vertex(
+      *this, [](const Mesh&, size_t) { return true; }, [&](const glm::vec3& p) { b.extend(p); });
   return b;
 }
 
 Sphere Scene::framing_sphere() const {
   // Triangles without a role count as framed (Role::Other).
-  auto framed = [](const Mesh& m, size_t t, bool skip_ground) {
-    return !skip_ground || t >= m.roles.size() || m.roles[t] != Role::Ground;
-  };
   bool skip_ground = false;
   for (const Mesh& m : meshes)
     for (size_t t = 0; t < m.triangle_count() && !skip_ground; ++t)
@@ -71,37 +112,38 @@ Sphere Scene::framing_sphere() const {
   if (!skip_ground)
     for (const Mesh& m : meshes)
       skip_ground = skip_ground || (m.roles.empty() && !m.indices.empty());
+  auto framed = [skip_ground](const Mesh& m, size_t t) {
+    return !skip_ground || t >= m.roles.size() || m.roles[t] != Role::Ground;
+  };
   Bounds b;
-  for (const Mesh& m : meshes)
-    for (size_t t = 0; t < m.triangle_count(); ++t)
-      if (framed(m, t, skip_ground))
-        for (int k = 0; k < 3; ++k)
-          b.extend(m.positions[m.indices[3 * t + size_t(k)]]);
+  for_each_world_vertex(*this, framed, [&](const glm::vec3& p) { b.extend(p); });
   Sphere s;
   if (b.empty()) return s;
   s.centre = b.center();
   float r2 = 0.0f;
-  for (const Mesh& m : meshes)
-    for (size_t t = 0; t < m.triangle_count(); ++t)
-      if (framed(m, t, skip_ground))
-        for (int k = 0; k < 3; ++k) {
-          const glm::vec3 d = m.positions[m.indices[3 * t + size_t(k)]] - s.centre;
-          r2 = std::max(r2, glm::dot(d, d));
-        }
+  for_each_world_vertex(*this, framed, [&](const glm::vec3& p) {
+    const glm::vec3 d = p - s.centre;
+    r2 = std::max(r2, glm::dot(d, d));
+  });
   s.radius = std::sqrt(r2);
   return s;
 }
 
 Bounds Scene::bounds(Role role) const {
   Bounds b;
-  for (const Mesh& m : meshes) {
-    for (size_t t = 0; t < m.triangle_count(); ++t) {
-      if (m.roles[t] != role) continue;
-      for (int k = 0; k < 3; ++k)
-        b.extend(m.positions[m.indices[3 * t + k]]);
-    }
-  }
+  for_each_world_vertex(
+      *this, [role](const Mesh& m, size_t t) { return m.roles[t] == role; },
+      [&](const glm::vec3& p) { b.extend(p); });
   return b;
+}
+
+size_t Scene::drawn_triangle_count() const {
+  if (!instanced()) return triangle_count();
+  size_t n = 0;
+  for (const Instance& inst : instances)
+    for (uint32_t mi : plants[inst.plant].meshes)
+      n += meshes[mi].triangle_count();
+  return n;
 }
 
 size_t Scene::triangle_count() const {
@@ -135,6 +177,7 @@ uint32_t Scene::max_cluster_id() const {
 }
 
 uint32_t Scene::branch_cluster_id() const {
+  if (instanced()) return id_layout(*this).branch_cluster;
   for (const Mesh& m : meshes)
     for (size_t t = 0; t < m.roles.size() && t < m.cluster_ids.size(); ++t)
       if (m.roles[t] != Role::Foliage) return m.cluster_ids[t];

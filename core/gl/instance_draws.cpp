@@ -1,0 +1,141 @@
+#include "core/gl/instance_draws.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "core/gl/shaders.h"
+
+namespace sylva {
+
+namespace {
+
+// The plant's bounding sphere in plant space: the box's centre, through its farthest vertex.
+glm::vec4 plant_sphere(const Scene& scene, size_t plant) {
+  Bounds b;
+  for (uint32_t mi : plant_meshes(scene, plant))
+    for (const glm::vec3& p : scene.meshes[mi].positions)
+      b.extend(p);
+  if (b.empty()) return glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+  const glm::vec3 c = b.center();
+  float r = 0.0f;
+  for (uint32_t mi : plant_meshes(scene, plant))
+    for (const glm::vec3& p : scene.meshes[mi].positions)
+      r = std::max(r, glm::length(p - c));
+  return glm::vec4(c, r * 1.001f + 1e-6f);
+}
+
+// The view volume's six planes (Gribb & Hartmann), normalised, inside where >= 0.
+std::array<glm::vec4, 6> view_planes(const Camera& camera) {
+  const glm::mat4 m = glm::transpose(camera.proj * camera.view);  // rows as columns
+  std::array<glm::vec4, 6> planes = {m[3] + m[0], m[3] - m[0], m[3] + m[1],
+                                     m[3] - m[1], m[3] + m[2], m[3] - m[2]};
+  for (glm::vec4& p : planes) {
+    const float len = glm::length(glm::vec3(p));
+    if (len > 0.0f) p /= len;
+  }
+  return planes;
+}
+
+}  // namespace
+
+void InstanceDraws::upload(const Scene& scene) {
+  release();
+  m_records.clear();
+  m_plant.clear();
+  m_mirrored.clear();
+  m_spheres.clear();
+  if (!scene.instanced()) return;
+  const IdLayout ids = id_layout(scene);
+  m_branch_cluster = ids.branch_cluster;
+  for (size_t p = 0; p < scene.plants.size(); ++p)
+    m_spheres.push_back(plant_sphere(scene, p));
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    Record r{};
+    for (int c = 0; c < 4; ++c)
+      r.model[c] = inst.transform[c];
+    const glm::mat3 n = normal_matrix(inst.transform);
+    for (int c = 0; c < 3; ++c)
+      r.normal[c] = glm::vec4(n[c], 0.0f);
+    r.ids = glm::uvec4(ids.bases[i].primitive, ids.bases[i].cluster, ids.bases[i].object, 0u);
+    m_records.push_back(r);
+    m_plant.push_back(inst.plant);
+    m_mirrored.push_back(glm::determinant(glm::mat3(inst.transform)) < 0.0f);
+  }
+}
+
+void InstanceDraws::release() {
+  if (m_buffer) glDeleteBuffers(1, &m_buffer);
+  m_buffer = 0;
+  m_capacity = 0;
+}
+
+std::vector<InstanceBatch> InstanceDraws::prepare(const Camera& camera, size_t* drawn) {
+  const std::array<glm::vec4, 6> planes = view_planes(camera);
+  auto visible = [&](size_t i) {
+    const glm::vec4 s = m_spheres[m_plant[i]];
+    if (s.w < 0.0f) return false;
+    const glm::mat4 model(m_records[i].model[0], m_records[i].model[1], m_records[i].model[2],
+                          m_records[i].model[3]);
+    const glm::vec3 c(model * glm::vec4(glm::vec3(s), 1.0f));
+    float scale = 0.0f;
+    for (int k = 0; k < 3; ++k)
+      scale = std::max(scale, glm::length(glm::vec3(model[k])));
+    for (const glm::vec4& p : planes)
+      if (glm::dot(glm::vec3(p), c) + p.w < -s.w * scale) return false;
+    return true;
+  };
+  std::vector<Record> data;
+  std::vector<InstanceBatch> batches;
+  for (uint32_t plant = 0; plant < m_spheres.size(); ++plant)
+    for (bool mirrored : {false, true}) {
+      InstanceBatch b;
+      b.plant = plant;
+      b.mirrored = mirrored;
+      b.offset = GLintptr(data.size() * sizeof(Record));
+      for (size_t i = 0; i < m_records.size(); ++i)
+        if (m_plant[i] == plant && m_mirrored[i] == mirrored && visible(i))
+          data.push_back(m_records[i]);
+      b.count = GLsizei(data.size() - size_t(b.offset) / sizeof(Record));
+      if (b.count > 0) batches.push_back(b);
+    }
+  if (drawn) *drawn = data.size();
+  if (!m_buffer) glGenBuffers(1, &m_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, m_buffer);
+  if (data.size() > m_capacity) {
+    m_capacity = data.size();
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m_capacity * sizeof(Record)), nullptr, GL_STREAM_DRAW);
+  }
+  if (!data.empty())
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(Record)), data.data());
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return batches;
+}
+
+void InstanceDraws::bind(const InstanceBatch& batch) const {
+  glBindBuffer(GL_ARRAY_BUFFER, m_buffer);
+  const auto stride = GLsizei(sizeof(Record));
+  auto at = [&](size_t offset) {
+    return reinterpret_cast<const void*>(size_t(batch.offset) + offset);
+  };
+  for (GLuint c = 0; c < 4; ++c) {
+    glVertexAttribPointer(kAttribModel + c, 4, GL_FLOAT, GL_FALSE, stride,
+                          at(offsetof(Record, model) + 16 * c));
+    glVertexAttribDivisor(kAttribModel + c, 1);
+    glEnableVertexAttribArray(kAttribModel + c);
+  }
+  for (GLuint c = 0; c < 3; ++c) {
+    glVertexAttribPointer(kAttribNormalMatrix + c, 3, GL_FLOAT, GL_FALSE, stride,
+                          at(offsetof(Record, normal) + 16 * c));
+    glVertexAttribDivisor(kAttribNormalMatrix + c, 1);
+    glEnableVertexAttribArray(kAttribNormalMatrix + c);
+  }
+  glVertexAttribIPointer(kAttribIdBase, 3, GL_UNSIGNED_INT, stride, at(offsetof(Record, ids)));
+  glVertexAttribDivisor(kAttribIdBase, 1);
+  glEnableVertexAttribArray(kAttribIdBase);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+}  // namespace sylva

@@ -1,0 +1,288 @@
+// Scenes of many plants from the command line: `sample park` (counts, determinism, ranges),
+// an instanced park against its flattened twin, `bake` keeping the instancing with each
+// plant's ka as the lone plant's, EXT_mesh_gpu_instancing files, and cameras from the file
+// (`--camera`, camera.json, turntable, `info`).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <glm/glm.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+
+#include "core/scene/gltf_write.h"
+#include "core/scene/instances.h"
+#include "core/scene/load.h"
+#include "tests/cli/cli_support.h"
+#include "tests/core/scene/gltf_builder.h"
+#include "tests/test_support.h"
+
+namespace sylva::test {
+namespace {
+
+using Json = nlohmann::json;
+
+const std::string& lone_tree() {
+  return sampled_scene("park-tree", "tree --seed 2 --leaves 1500");
+}
+
+// A park of 12 instances of the lone tree, made once.
+const std::string& park() {
+  static const std::string path = [] {
+    const std::string p = temp_dir("park") + "/park.glb";
+    const RunResult r = run_sylva("sample park --plants " + lone_tree() +
+                                  " --count 12 --area 40x30 --seed 5 -o " + p);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return p;
+  }();
+  return path;
+}
+
+Json info_json(const std::string& scene) {
+  const RunResult r = run_sylva("info --json " + scene);
+  EXPECT_EQ(r.status, 0) << r.output;
+  return Json::parse(r.output, nullptr, false);
+}
+
+// The glTF JSON chunk of a .glb.
+Json glb_json(const std::string& path) {
+  const std::string bytes = read_file(path);
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return Json::parse(bytes.substr(20, length));
+}
+
+TEST(Park, InfoCountsInstancesPlantsAndTriangles) {
+  const Json lone = info_json(lone_tree());
+  const Json j = info_json(park());
+  EXPECT_EQ(j["instances"], 12);
+  EXPECT_EQ(j["plants"], 1);
+  EXPECT_EQ(j["distinct_triangles"], lone["triangles"]);
+  EXPECT_EQ(j["triangles"], 12 * lone["triangles"].get<size_t>());
+  EXPECT_EQ(j["leaves"], lone["leaves"]);
+  EXPECT_EQ(j["cameras"].size(), 2u);
+  const RunResult text = run_sylva("info " + park());
+  EXPECT_NE(text.output.find("plants      1 distinct, 12 instances"), std::string::npos)
+      << text.output;
+}
+
+TEST(Park, SameSeedSameBytesOtherSeedOtherLayout) {
+  const std::string dir = temp_dir("park-seed");
+  for (const char* name : {"a", "b"})
+    ASSERT_EQ(run_sylva("sample park --plants " + lone_tree() +
+                        " --count 7 --area 20 --seed 9 -o " + dir + "/" + name + ".glb")
+                  .status,
+              0);
+  ASSERT_EQ(run_sylva("sample park --plants " + lone_tree() + " --count 7 --area 20 --seed 10 -o " +
+                      dir + "/c.glb")
+                .status,
+            0);
+  EXPECT_EQ(read_file(dir + "/a.glb"), read_file(dir + "/b.glb"));
+  EXPECT_NE(read_file(dir + "/a.glb"), read_file(dir + "/c.glb"));
+  const Scene s = load_scene(dir + "/a.glb");
+  EXPECT_EQ(s.instance_count(), 7u);
+  const Bounds b = s.bounds();  // the instances stand inside the 20 x 20 area
+  const Bounds plant = load_scene(lone_tree()).bounds();
+  const float reach = 1.2f * std::max({std::abs(plant.min.x), std::abs(plant.max.x),
+                                       std::abs(plant.min.z), std::abs(plant.max.z)});
+  EXPECT_GE(b.min.x, -10.0f - reach);
+  EXPECT_LE(b.max.z, 10.0f + reach);
+}
+
+TEST(Park, OptionsOutOfRangeAreOneLineErrors) {
+  const std::string dir = temp_dir("park-bad");
+  const std::string base = "sample park --plants " + lone_tree() + " -o " + dir + "/p.glb ";
+  expect_input_error(base + "--count 0", "--count");
+  expect_input_error(base + "--count 100001", "--count");
+  expect_input_error(base + "--count -3", "--count");
+  expect_input_error(base + "--area 0x5", "--area");
+  expect_input_error(base + "--area 10x1000001", "--area");
+  expect_input_error(base + "--area -4", "--area");
+  expect_input_error(base + "--area 10xabc", "--area");
+  expect_input_error("sample park -o " + dir + "/p.glb", "--plants");
+  expect_input_error("sample park --plants " + dir + "/missing.glb -o " + dir + "/p.glb",
+                     "missing.glb");
+  expect_input_error("sample tree --count 5 -o " + dir + "/p.glb", "--count");
+  expect_input_error("sample park --leaves 500 --plants " + lone_tree() + " -o " + dir + "/p.glb",
+                     "--leaves");
+  EXPECT_FALSE(file_exists(dir + "/p.glb"));
+  // The ends of the ranges are accepted.
+  EXPECT_EQ(run_sylva(base + "--count 1 --area 1000000x0.001").status, 0);
+}
+
+// The park flattened into one world-space mesh per instance, as a file of its own.
+const std::string& flattened_park() {
+  static const std::string path = [] {
+    const std::string p = temp_dir("park-flat") + "/flat.glb";
+    const Scene flat = flatten(load_scene(park()));
+    EXPECT_FALSE(flat.instanced());
+    write_glb(flat, p);
+    return p;
+  }();
+  return path;
+}
+
+// The share of pixels differing by more than 24 levels in a channel (the golden tolerance).
+double failing_share(const std::string& a, const std::string& b) {
+  const cv::Mat x = cv::imread(a, cv::IMREAD_UNCHANGED), y = cv::imread(b, cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(x.size(), y.size());
+  if (x.size() != y.size() || x.empty()) return 1.0;
+  cv::Mat d;
+  cv::absdiff(x, y, d);
+  d = d.reshape(1, int(d.total()));
+  cv::reduce(d, d, 1, cv::REDUCE_MAX);
+  return double(cv::countNonZero(d > 24)) / double(d.total());
+}
+
+TEST(Park, RendersTheSamePixelsAsItsFlattenedTwin) {
+  const std::string dir = temp_dir("park-twin");
+  EXPECT_EQ(info_json(flattened_park())["instances"], 1);
+  for (const char* style : {"standard", "toon"}) {
+    for (const std::string& scene : {park(), flattened_park()}) {
+      const std::string out = dir + "/" + style + (scene == park() ? "-park.png" : "-flat.png");
+      const RunResult r =
+          run_sylva("render " + scene + " --style " + style + " --size 320x240 -o " + out);
+      ASSERT_EQ(r.status, 0) << r.output;
+    }
+    EXPECT_LE(failing_share(dir + "/" + style + "-park.png", dir + "/" + style + "-flat.png"), 0.01)
+        << style;
+  }
+}
+
+// The ka of every vertex of `a` against `b`'s same mesh: root mean square difference.
+double ka_rmse(const Mesh& a, const Mesh& b) {
+  EXPECT_EQ(a.ka.size(), b.ka.size());
+  double sum = 0.0;
+  for (size_t v = 0; v < a.ka.size() && v < b.ka.size(); ++v)
+    sum += double(a.ka[v] - b.ka[v]) * double(a.ka[v] - b.ka[v]);
+  return a.ka.empty() ? 1.0 : std::sqrt(sum / double(a.ka.size()));
+}
+
+TEST(Park, BakeKeepsTheInstancingAndEachPlantsKaIsTheLonePlants) {
+  const std::string dir = temp_dir("park-bake");
+  ASSERT_EQ(run_sylva("bake " + lone_tree() + " --no-cache -o " + dir + "/lone.glb").status, 0);
+  const RunResult r = run_sylva("bake " + park() + " --no-cache -o " + dir + "/park.glb");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Scene lone = load_scene(dir + "/lone.glb");
+  const Scene baked = load_scene(dir + "/park.glb");
+  ASSERT_TRUE(baked.instanced());
+  EXPECT_EQ(baked.instance_count(), 12u);
+  EXPECT_EQ(glb_json(dir + "/park.glb")["meshes"].size(),
+            glb_json(dir + "/lone.glb")["meshes"].size());
+  ASSERT_EQ(baked.meshes.size(), lone.meshes.size());
+  for (size_t m = 0; m < lone.meshes.size(); ++m) {
+    EXPECT_EQ(baked.meshes[m].name, lone.meshes[m].name);
+    EXPECT_LE(ka_rmse(baked.meshes[m], lone.meshes[m]), 0.01) << lone.meshes[m].name;
+  }
+}
+
+// A glTF with one 120-triangle mesh drawn 5 times by EXT_mesh_gpu_instancing.
+std::string gpu_instanced_file(const std::string& dir) {
+  GltfBuilder b;
+  b.grid_mesh("leaves", 10, 6);
+  std::vector<float> t;
+  for (int i = 0; i < 5; ++i)
+    t.insert(t.end(), {1.5f * float(i), 0.0f, -0.5f * float(i)});
+  b.node({{"mesh", 0},
+          {"extensions",
+           {{"EXT_mesh_gpu_instancing",
+             {{"attributes", {{"TRANSLATION", b.floats(t, "VEC3", 3)}}}}}}}});
+  b.json()["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  const std::string path = dir + "/gpu.gltf";
+  write_file(path, b.text());
+  return path;
+}
+
+TEST(GpuInstancing, LoadsWithTheRightCountAndDrawsEveryInstance) {
+  const std::string dir = temp_dir("gpu-instancing");
+  const std::string path = gpu_instanced_file(dir);
+  const Json j = info_json(path);
+  EXPECT_EQ(j["instances"], 5);
+  EXPECT_EQ(j["triangles"], 5 * 120);
+  EXPECT_EQ(j["distinct_triangles"], 120);
+  const RunResult r = run_sylva("buffers " + path +
+                                " --buffers id --id object --format exr --cryptomatte none "
+                                "--size 300x120 --elevation 0 --azimuth 0 --out-dir " +
+                                dir + "/b");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const cv::Mat ids = oiio_channels(dir + "/b/buffers.exr", "id", dir);
+  std::set<int32_t> seen;
+  for (auto it = ids.begin<int32_t>(); it != ids.end<int32_t>(); ++it)
+    if (*it) seen.insert(*it);
+  EXPECT_EQ(seen, (std::set<int32_t>{1, 2, 3, 4, 5}));  // an object id per instance
+}
+
+// The camera nodes of a .glb: name -> its node's matrix.
+std::map<std::string, glm::mat4> camera_nodes(const std::string& path) {
+  std::map<std::string, glm::mat4> out;
+  const Json gltf = glb_json(path);
+  for (const Json& n : gltf["nodes"]) {
+    if (!n.contains("camera")) continue;
+    glm::mat4 m(1.0f);
+    for (int i = 0; i < 16; ++i)
+      m[i / 4][i % 4] = n["matrix"][size_t(i)].get<float>();
+    out[n["name"].get<std::string>()] = m;
+  }
+  return out;
+}
+
+TEST(Cameras, CameraJsonIsTheFileCameraNode) {
+  const std::string dir = temp_dir("cameras");
+  const auto nodes = camera_nodes(park());
+  ASSERT_EQ(nodes.size(), 2u);
+  for (const auto& [name, world] : nodes) {
+    const std::string out = dir + "/" + name;
+    const std::string which = name == "plan" ? "0" : "overview";  // by index and by name
+    const RunResult r = run_sylva("buffers " + park() + " --camera " + which +
+                                  " --buffers depth --size 160x120 --out-dir " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const Json cam = Json::parse(read_file(out + "/camera.json"));
+    const glm::mat4 view = glm::inverse(world);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(cam["eye"][size_t(k)].get<float>(), world[3][k], 1e-4f) << name;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        EXPECT_NEAR(cam["view"][size_t(i)][size_t(j)].get<float>(), view[j][i], 1e-4f) << name;
+    EXPECT_EQ(cam["orthographic"], name == "plan");
+    // The file's clipping planes.
+    const Json file_camera = glb_json(park())["cameras"][name == "plan" ? 0 : 1];
+    const Json& planes = file_camera[name == "plan" ? "orthographic" : "perspective"];
+    EXPECT_NEAR(cam["near"].get<double>(), planes["znear"].get<double>(), 1e-6);
+    EXPECT_NEAR(cam["far"].get<double>(), planes["zfar"].get<double>(), 1e-4);
+    const cv::Mat depth = cv::imread(out + "/depth.tiff", cv::IMREAD_UNCHANGED);
+    EXPECT_GT(cv::countNonZero(depth), 500) << name;  // the park is in view
+  }
+}
+
+TEST(Cameras, AMissingCameraIsAnErrorListingTheFilesCameras) {
+  const std::string dir = temp_dir("cameras-bad");
+  const std::string out = " --size 64 -o " + dir + "/x.png";
+  const RunResult r = run_sylva("render " + park() + " --camera nope" + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(count_lines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find("--camera: no camera named 'nope'; the file's cameras: 0 'plan' "
+                          "(orthographic), 1 'overview' (perspective)"),
+            std::string::npos)
+      << r.output;
+  expect_input_error("render " + park() + " --camera 2" + out, "index 2 is out of range");
+  expect_input_error("render " + lone_tree() + " --camera 0" + out, "the file has no cameras");
+  EXPECT_FALSE(file_exists(dir + "/x.png"));
+}
+
+TEST(Cameras, TurntableStartsFromTheFileCamera) {
+  const std::string dir = temp_dir("cameras-turntable");
+  ASSERT_EQ(
+      run_sylva("render " + park() + " --camera overview --size 96x64 -o " + dir + "/r.png").status,
+      0);
+  const RunResult t = run_sylva("turntable " + park() +
+                                " --camera overview --frames 4 --size 96x64 -q -o " + dir + "/f");
+  ASSERT_EQ(t.status, 0) << t.output;
+  EXPECT_EQ(failing_share(dir + "/r.png", dir + "/f/frame-00000.png"), 0.0);
+  EXPECT_GT(failing_share(dir + "/r.png", dir + "/f/frame-00001.png"), 0.0);
+}
+
+}  // namespace
+}  // namespace sylva::test

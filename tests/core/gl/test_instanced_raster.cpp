@@ -1,0 +1,133 @@
+// Instanced draws (core/gl/instance_draws.h) against the same scene flattened into world-space
+// meshes (core/scene/instances.h): every target agrees, ids included, with mirrored, scaled,
+// turned and out-of-view instances.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <opencv2/core.hpp>
+
+#include "core/gl/rasterizer.h"
+#include "core/scene/instances.h"
+#include "core/scene/load.h"
+#include "tests/core/gl/raster_scenes.h"
+
+namespace sylva {
+namespace {
+
+using namespace sylva::test;
+
+// A plant of two meshes: a crown of spheres (foliage, 3 leaves) and a trunk quad (wood).
+Scene plant_scene(bool with_ground) {
+  Mesh crown;
+  crown.name = "crown";
+  for (int i = 0; i < 3; ++i)
+    add_sphere(crown, glm::vec3(0.4f * float(i - 1), 1.2f + 0.2f * float(i % 2), 0.0f), 0.35f, 24,
+               12);
+  Mesh trunk = make_quad(0.08f, 0.0f);
+  trunk.name = "trunk";
+  for (glm::vec3& p : trunk.positions)
+    p.y = (p.y + 0.08f) * 6.0f;
+  Scene s = scene_of({crown, trunk});
+  s.meshes[0].roles.assign(s.meshes[0].triangle_count(), Role::Foliage);
+  s.meshes[1].roles.assign(s.meshes[1].triangle_count(), Role::Wood);
+  s.plants.push_back({"tree", {0, 1}, {}});
+  const glm::mat4 id(1.0f);
+  s.instances = {
+      {0, id, "a"},
+      {0, glm::rotate(glm::translate(id, glm::vec3(1.5f, 0, -0.5f)), 0.7f, glm::vec3(0, 1, 0)),
+       "b"},
+      {0, glm::scale(glm::translate(id, glm::vec3(-1.4f, 0, 0.3f)), glm::vec3(1.3f, 0.8f, 1.1f)),
+       "c"},
+      {0, glm::scale(glm::translate(id, glm::vec3(0.2f, 0, 1.2f)), glm::vec3(-1.0f, 1.0f, 1.0f)),
+       "mirrored"},
+  };
+  if (with_ground) {
+    Mesh g = make_quad(3.0f, 0.0f);
+    g.name = "ground";
+    g.material = 0;
+    for (glm::vec3& p : g.positions)
+      p = glm::vec3(p.x, -0.01f, p.y);
+    g.normals.assign(4, glm::vec3(0, 1, 0));
+    g.indices = {0, 2, 1, 0, 3, 2};  // facing +Y
+    g.roles.assign(g.triangle_count(), Role::Ground);
+    s.meshes.push_back(g);
+    s.plants.push_back({"rest", {2}, {}});
+    s.instances.insert(s.instances.begin(), {1, id, ""});
+  }
+  LoadOptions keep;
+  finish_scene(s, keep, true);
+  // Clusters as leaf_clusters makes them: a leaf each, the wood one more.
+  for (Mesh& m : s.meshes)
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      m.cluster_ids[t] = m.roles[t] == Role::Foliage ? m.primitive_ids[t] : 4u;
+  return s;
+}
+
+GBuffer render(const Scene& s, const Camera& cam, IdKind ids, size_t* drawn = nullptr) {
+  Rasterizer r(gl());
+  r.upload(s);
+  RasterRequest q = request_of(Target::Color | Target::Normal | Target::Depth | Target::Id, ids);
+  const GBuffer g = r.render(cam, Lighting::three_point(), q);
+  if (drawn) *drawn = r.last_drawn_instances();
+  return g;
+}
+
+// The share of pixels where `a` and `b` differ by more than `tolerance` in any channel.
+double differing(const cv::Mat& a, const cv::Mat& b, double tolerance) {
+  cv::Mat d;
+  cv::absdiff(a, b, d);
+  d.reshape(1, int(d.total())).convertTo(d, CV_64F);
+  cv::Mat worst;
+  cv::reduce(d, worst, 1, cv::REDUCE_MAX);
+  return double(cv::countNonZero(worst > tolerance)) / double(d.total());
+}
+
+TEST(InstancedRaster, MatchesTheFlattenedScene) {
+  for (bool ground : {false, true}) {
+    const Scene s = plant_scene(ground);
+    const Scene flat = flatten(s);
+    const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 240, 200);
+    EXPECT_EQ(s.framing_sphere().radius, flat.framing_sphere().radius);
+    for (IdKind kind : {IdKind::Primitive, IdKind::Cluster, IdKind::Object, IdKind::Material}) {
+      size_t drawn = 0;
+      const GBuffer a = render(s, cam, kind, &drawn);
+      const GBuffer b = render(flat, cam, kind);
+      EXPECT_EQ(drawn, s.instances.size());
+      EXPECT_LT(differing(a.color, b.color, 2), 0.002) << "ground " << ground;
+      EXPECT_LT(differing(a.normal, b.normal, 1e-3), 0.002);
+      EXPECT_LT(differing(a.depth, b.depth, 1e-4), 0.002);
+      EXPECT_LT(differing(a.id, b.id, 0), 0.002) << "id kind " << int(kind);
+      EXPECT_GT(id_set(a.id).size(), kind == IdKind::Material ? 1u : 5u);
+    }
+  }
+}
+
+TEST(InstancedRaster, ClusterIdsAreThoseOfTheLayout) {
+  const Scene s = plant_scene(false);
+  const IdLayout l = id_layout(s);
+  const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 200, 200);
+  const std::set<int32_t> ids = id_set(render(s, cam, IdKind::Cluster).id);
+  // Three leaves per instance, four instances; the wood of all of them one cluster.
+  EXPECT_EQ(l.branch_cluster, 13u);
+  EXPECT_TRUE(ids.count(13));
+  EXPECT_TRUE(ids.count(12));  // the last instance's third leaf
+  EXPECT_EQ(*ids.rbegin(), 13);
+}
+
+TEST(InstancedRaster, InstancesOutOfViewAreNotDrawnAndChangeNothing) {
+  Scene s = plant_scene(false);
+  const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 160, 160);
+  const GBuffer before = render(s, cam, IdKind::Object);
+  // Behind the camera and far to the side: outside the view volume.
+  const glm::vec3 behind = cam.eye + 3.0f * (cam.eye - s.framing_sphere().centre);
+  s.instances.push_back({0, glm::translate(glm::mat4(1.0f), behind), "behind"});
+  s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(500, 0, 0)), "far"});
+  size_t drawn = 0;
+  const GBuffer after = render(s, cam, IdKind::Object, &drawn);
+  EXPECT_EQ(drawn, 4u);
+  EXPECT_EQ(differing(before.color, after.color, 0), 0.0);
+  EXPECT_EQ(differing(before.id, after.id, 0), 0.0);
+}
+
+}  // namespace
+}  // namespace sylva
