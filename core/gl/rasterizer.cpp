@@ -19,7 +19,8 @@ namespace sylva {
 
 namespace {
 
-constexpr GLsizei kDrawChunkIndices = 3 * 32768;  // indices per draw call (32k triangles)
+constexpr GLsizei kDrawChunkIndices = 3 * 32768;      // indices per draw call (32k triangles)
+constexpr size_t kQueuedTriangles = size_t(1) << 19;  // instanced triangles per glFinish
 constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
@@ -102,6 +103,7 @@ struct Rasterizer::Impl {
   std::vector<std::vector<size_t>> plant_meshes;  // instanced: per plant, indices into meshes
   InstanceDraws instances;
   size_t drawn_instances = 0;
+  size_t queued_triangles = 0;  // instanced triangles drawn since the last glFinish
   std::vector<GLuint> textures;
   std::vector<glm::vec3> texture_means;  // linear mean colour of each texture's opaque texels
   std::vector<Material> materials;
@@ -243,14 +245,30 @@ struct Rasterizer::Impl {
 
   // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
   // vertex); chunks bound that buffer instead of letting it grow with the mesh.
-  static void draw_chunks(const GpuMesh& m, GLsizei instance_count) {
+  // Instanced: llvmpipe bins the triangles of many draws ahead of its rasteriser threads (up
+  // to 64 scenes, each up to tens of MB) when they fall behind, so the draws of a forest go in
+  // pieces of at most kQueuedTriangles and wait for the rasteriser in between (glFinish):
+  // the binned data stays bounded whatever the number of instances.
+  void draw_chunks(const GpuMesh& m, GLsizei instance_count) {
     for (GLsizei first = 0; first < m.index_count; first += kDrawChunkIndices) {
       const GLsizei count = std::min(kDrawChunkIndices, m.index_count - first);
       const void* offset = reinterpret_cast<const void*>(size_t(first) * sizeof(uint32_t));
-      if (instance_count == 0)
+      if (instance_count == 0) {
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset);
-      else
-        glDrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset, instance_count);
+        continue;
+      }
+      const size_t triangles = size_t(count / 3);
+      const auto per_draw = GLsizei(std::max<size_t>(1, kQueuedTriangles / triangles));
+      for (GLsizei i = 0; i < instance_count; i += per_draw) {
+        const GLsizei n = std::min(per_draw, instance_count - i);
+        if (queued_triangles + triangles * size_t(n) > kQueuedTriangles) {
+          glFinish();
+          queued_triangles = 0;
+        }
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset, n,
+                                            GLuint(i));
+        queued_triangles += triangles * size_t(n);
+      }
     }
   }
 
