@@ -70,7 +70,7 @@ Action add_compare_command(CLI::App& app) {
     for (const auto& s : built)
       list.push_back(s.get());
 
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->illumination));
     RenderGraph graph;
     SheetScene scene = sheet_scene(*frame, o->illumination, o->scene.seed);
     if (o->quiet)

@@ -128,7 +128,7 @@ Action add_render_command(CLI::App& app) {
     if (vector) require_line_style(*style, "--style");
     check_dpi(o->dpi, "--dpi");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->illumination));
     RenderGraph graph;
     const SheetPlan plan = add_sheet_passes(
         graph, {style.get()}, sheet_scene(*frame, o->illumination, o->scene.seed), vector);
@@ -216,7 +216,7 @@ Action add_buffers_command(CLI::App& app) {
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets, o->illumination);
     const NormalMode mode =
         normals->count() > 0 ? parse_normal_mode(o->normals, "--normals") : style->normals();
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->illumination));
     frame->setup.request.flat_albedo = style->params().albedo == "flat";  // ids follow --id
     // The style's picture-scale rho (ink.detail), as its render would use.
     o->illumination.picture_rho =

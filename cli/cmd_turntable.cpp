@@ -153,7 +153,7 @@ bool keep_frame(const TurntableOptions& o, const std::string& file, Progress& pr
 void run_turntable(const CLI::App& cmd, TurntableOptions& o) {
   const TurntableChecks c = check_turntable_options(cmd, o);
   const Style& style = *c.style;
-  auto frame = prepare_frame(o.scene, o.view);
+  auto frame = prepare_frame(o.scene, o.view, result_cache_dir(o.illumination));
   SheetScene scene = sheet_scene(*frame, o.illumination, o.scene.seed);
   memoize_preprocessing(scene, o.quiet);
   const Camera base = frame->setup.camera;

@@ -66,6 +66,10 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
                "ao.model=hegeman-*");
   cmd.add_option("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB")
       ->capture_default_str();
+  cmd.add_option("--lod", o.lod,
+                 "Levels of detail for a scene of many plants: on draws each instance with a "
+                 "simplified mesh when it covers few pixels; off draws every one whole")
+      ->capture_default_str();
   cmd.add_option("--camera", o.camera,
                  "A camera of the file by name or index (sylva info lists them): its place, "
                  "field of view or orthographic extent and clipping planes, the image's aspect; "
@@ -158,6 +162,8 @@ void resolve_view_options(ViewOptions& o) {
   if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
   for (const std::string& l : o.lights)
     parse_light(l);
+  if (o.lod != "on" && o.lod != "off")
+    throw InputError("--lod", "expected on or off, got '" + o.lod + "'");
   if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object" &&
       o.id_kind != "material")
     throw InputError("--id",

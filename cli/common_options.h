@@ -37,6 +37,8 @@ struct ViewOptions {
   // --ground-color: "#RRGGBB" (sRGB, as --background) of the ground plane; a neutral light
   // grey by default.
   std::string ground_color = "#b4b4ac";
+  // --lod on|off: levels of detail for the instances of a scene of many plants.
+  std::string lod = "on";
   // --camera NAME|INDEX: a camera of the file (Scene::cameras, `sylva info` lists them) in
   // place of the orbit camera; empty = the orbit camera.
   std::string camera;

@@ -125,12 +125,17 @@ IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed
   p.seed = seed;
   if (!o.surface_out.empty()) check_output_path("--surface-out", o.surface_out, {".glb"});
   s.surface_out = o.surface_out;
-  if (!o.no_cache) s.cache_dir = o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
+  s.cache_dir = result_cache_dir(o);
   s.option_prefix = "--";
   s.on_done = [](const FoliageStats& st) {
     std::fprintf(stderr, "foliage illumination: %s\n", describe(st).c_str());
   };
   return s;
+}
+
+std::string result_cache_dir(const IlluminationOptions& o) {
+  if (o.no_cache) return "";
+  return o.cache_dir.empty() ? default_cache_dir() : o.cache_dir;
 }
 
 }  // namespace sylva::cli

@@ -23,4 +23,8 @@ void apply_explicit_illumination_options(const CLI::App& cmd, ParamSet& set);
 IlluminationSetup illumination_setup(const IlluminationOptions& o, uint64_t seed,
                                      const Scene& scene);
 
+// The result cache folder of --cache-dir / --no-cache: "" with --no-cache, else --cache-dir,
+// else default_cache_dir().
+std::string result_cache_dir(const IlluminationOptions& o);
+
 }  // namespace sylva::cli

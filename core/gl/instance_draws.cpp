@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/error.h"
 #include "core/gl/shaders.h"
+#include "core/scene/lod.h"
 
 namespace sylva {
 
@@ -46,6 +48,8 @@ void InstanceDraws::upload(const Scene& scene) {
   m_plant.clear();
   m_mirrored.clear();
   m_spheres.clear();
+  m_triangles.clear();
+  m_levels.clear();
   if (!scene.instanced()) return;
   const IdLayout ids = id_layout(scene);
   m_branch_cluster = ids.branch_cluster;
@@ -72,35 +76,70 @@ void InstanceDraws::release() {
   m_capacity = 0;
 }
 
-std::vector<InstanceBatch> InstanceDraws::prepare(const Camera& camera, size_t* drawn) {
+void InstanceDraws::set_levels(const std::vector<size_t>& plant_triangles,
+                               const std::vector<int>& levels) {
+  SYLVA_CHECK(plant_triangles.size() == m_spheres.size() && levels.size() == m_spheres.size(),
+              "InstanceDraws::set_levels: one entry per plant");
+  m_triangles = plant_triangles;
+  m_levels = levels;
+}
+
+int InstanceDraws::level_of(size_t i, const glm::vec3& centre, float radius, const Camera& camera,
+                            int ssaa) const {
+  if (m_triangles.empty() || m_levels[m_plant[i]] == 0) return 0;
+  // The projected radius in pixels: proj[1][1] maps a view-space height to half the image
+  // height, divided by the depth under perspective (kept at least the radius, so an instance
+  // around the eye stays whole).
+  const double half_height = 0.5 * double(camera.height) * double(ssaa);
+  double r_px = double(radius) * double(camera.proj[1][1]) * half_height;
+  if (!camera.ortho) {
+    const double depth = -double((camera.view * glm::vec4(centre, 1.0f)).z);
+    r_px /= std::max(depth, double(radius));
+  }
+  const double pixels = 3.14159265358979 * r_px * r_px;
+  double triangles = double(m_triangles[m_plant[i]]);
+  int level = 0;
+  while (level < m_levels[m_plant[i]] && triangles > pixels * kLodTrianglesPerPixel) {
+    triangles *= 0.5;
+    ++level;
+  }
+  return level;
+}
+
+std::vector<InstanceBatch> InstanceDraws::prepare(const Camera& camera, int ssaa, size_t* drawn) {
   const std::array<glm::vec4, 6> planes = view_planes(camera);
-  auto visible = [&](size_t i) {
+  // Per instance: -1 when out of view, else its level.
+  std::vector<int> level(m_records.size(), -1);
+  for (size_t i = 0; i < m_records.size(); ++i) {
     const glm::vec4 s = m_spheres[m_plant[i]];
-    if (s.w < 0.0f) return false;
+    if (s.w < 0.0f) continue;
     const glm::mat4 model(m_records[i].model[0], m_records[i].model[1], m_records[i].model[2],
                           m_records[i].model[3]);
     const glm::vec3 c(model * glm::vec4(glm::vec3(s), 1.0f));
     float scale = 0.0f;
     for (int k = 0; k < 3; ++k)
       scale = std::max(scale, glm::length(glm::vec3(model[k])));
+    bool inside = true;
     for (const glm::vec4& p : planes)
-      if (glm::dot(glm::vec3(p), c) + p.w < -s.w * scale) return false;
-    return true;
-  };
+      inside = inside && glm::dot(glm::vec3(p), c) + p.w >= -s.w * scale;
+    if (inside) level[i] = level_of(i, c, s.w * scale, camera, ssaa);
+  }
   std::vector<Record> data;
   std::vector<InstanceBatch> batches;
   for (uint32_t plant = 0; plant < m_spheres.size(); ++plant)
-    for (bool mirrored : {false, true}) {
-      InstanceBatch b;
-      b.plant = plant;
-      b.mirrored = mirrored;
-      b.offset = GLintptr(data.size() * sizeof(Record));
-      for (size_t i = 0; i < m_records.size(); ++i)
-        if (m_plant[i] == plant && m_mirrored[i] == mirrored && visible(i))
-          data.push_back(m_records[i]);
-      b.count = GLsizei(data.size() - size_t(b.offset) / sizeof(Record));
-      if (b.count > 0) batches.push_back(b);
-    }
+    for (int l = 0; l <= kLodLevels; ++l)
+      for (bool mirrored : {false, true}) {
+        InstanceBatch b;
+        b.plant = plant;
+        b.level = l;
+        b.mirrored = mirrored;
+        b.offset = GLintptr(data.size() * sizeof(Record));
+        for (size_t i = 0; i < m_records.size(); ++i)
+          if (m_plant[i] == plant && m_mirrored[i] == mirrored && level[i] == l)
+            data.push_back(m_records[i]);
+        b.count = GLsizei(data.size() - size_t(b.offset) / sizeof(Record));
+        if (b.count > 0) batches.push_back(b);
+      }
   if (drawn) *drawn = data.size();
   if (!m_buffer) glGenBuffers(1, &m_buffer);
   glBindBuffer(GL_ARRAY_BUFFER, m_buffer);

@@ -12,6 +12,7 @@
 #include "core/gl/downsample.h"
 #include "core/gl/gpu_scene.h"
 #include "core/gl/instance_draws.h"
+#include "core/gl/lod_meshes.h"
 #include "core/gl/raster_uniforms.h"
 #include "core/gl/shaders.h"
 
@@ -101,6 +102,7 @@ struct Rasterizer::Impl {
   GlContext& context;
   std::vector<GpuMesh> meshes;
   std::vector<std::vector<size_t>> plant_meshes;  // instanced: per plant, indices into meshes
+  LodMeshes lod;                                  // levels of detail (set_lod)
   InstanceDraws instances;
   size_t drawn_instances = 0;
   size_t queued_triangles = 0;  // instanced triangles drawn since the last glFinish
@@ -122,6 +124,7 @@ struct Rasterizer::Impl {
     }
     meshes.clear();
     plant_meshes.clear();
+    lod.release();
     instances.release();
     if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
     textures.clear();
@@ -283,12 +286,14 @@ struct Rasterizer::Impl {
       drawn_instances = 1;
     } else {
       // Mirrored instances (a negative determinant) turn their triangles' winding around.
-      for (const InstanceBatch& batch : instances.prepare(camera, &drawn_instances)) {
+      for (const InstanceBatch& batch : instances.prepare(camera, request.ssaa, &drawn_instances)) {
         glFrontFace(batch.mirrored ? GL_CW : GL_CCW);
-        for (size_t mi : plant_meshes[batch.plant]) {
-          prepare_mesh(meshes[mi], targets, camera, lighting, request, variants);
+        const bool whole = batch.level == 0;
+        const std::vector<GpuMesh>& pool = whole ? meshes : lod.meshes();
+        for (size_t mi : whole ? plant_meshes[batch.plant] : lod.of(batch.plant, batch.level)) {
+          prepare_mesh(pool[mi], targets, camera, lighting, request, variants);
           instances.bind(batch);
-          draw_chunks(meshes[mi], batch.count);
+          draw_chunks(pool[mi], batch.count);
         }
       }
       glFrontFace(GL_CCW);
@@ -389,9 +394,28 @@ void Rasterizer::upload(const Scene& scene) {
   }
 }
 
+void Rasterizer::set_lod(const Scene& scene, const std::vector<PlantLod>& lods) {
+  Impl& s = *m_impl;
+  s.context.make_current();
+  s.lod.release();
+  if (!scene.instanced() || lods.empty()) return;
+  s.lod.upload(scene, lods);
+  std::vector<size_t> triangles;
+  std::vector<int> levels;
+  for (size_t p = 0; p < scene.plants.size(); ++p) {
+    size_t n = 0;
+    for (uint32_t mi : scene.plants[p].meshes)
+      n += scene.meshes[mi].triangle_count();
+    triangles.push_back(n);
+    levels.push_back(int(lods[p].levels.size()));
+  }
+  s.instances.set_levels(triangles, levels);
+}
+
 void Rasterizer::set_vertex_shading(const VertexShading& shading) {
   Impl& s = *m_impl;
   s.context.make_current();
+  s.lod.set_shading(shading);
   for (GpuMesh& m : s.meshes) {
     const size_t i = m.scene_index;
     if (i >= shading.normals.size()) continue;

@@ -17,6 +17,7 @@
 #include "core/gl/gbuffer.h"
 #include "core/gl/gl_context.h"
 #include "core/gl/lights.h"
+#include "core/scene/lod.h"
 #include "core/scene/scene.h"
 
 namespace sylva {
@@ -54,7 +55,12 @@ class Rasterizer {
 
   // Uploads geometry, ids and textures. Call again when the scene changes.
   void upload(const Scene& scene);
-  // Replaces the uploaded normals/ka of the meshes `shading` covers; the rest keep theirs.
+  // Levels of detail of an instanced scene's plants (npr/plant_lod.h; after upload(), one
+  // PlantLod per plant): from then on each instance is drawn at the level its projected size
+  // asks for (core/gl/instance_draws.h). Empty, or a flat scene: every instance whole.
+  void set_lod(const Scene& scene, const std::vector<PlantLod>& lods);
+  // Replaces the uploaded normals/ka of the meshes `shading` covers (and of their levels of
+  // detail); the rest keep theirs.
   void set_vertex_shading(const VertexShading& shading);
   GBuffer render(const Camera& camera, const Lighting& lighting, const RasterRequest& request);
 

@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <glm/glm.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <set>
 
 #include "core/scene/gltf_write.h"
@@ -143,13 +145,81 @@ TEST(Park, RendersTheSamePixelsAsItsFlattenedTwin) {
   for (const char* style : {"standard", "toon"}) {
     for (const std::string& scene : {park(), flattened_park()}) {
       const std::string out = dir + "/" + style + (scene == park() ? "-park.png" : "-flat.png");
-      const RunResult r =
-          run_sylva("render " + scene + " --style " + style + " --size 320x240 -o " + out);
+      const RunResult r = run_sylva("render " + scene + " --style " + style +
+                                    " --size 320x240 --lod off -o " + out);
       ASSERT_EQ(r.status, 0) << r.output;
     }
     EXPECT_LE(failing_share(dir + "/" + style + "-park.png", dir + "/" + style + "-flat.png"), 0.01)
         << style;
   }
+}
+
+// The look at the scale of `block` px: of the block x block squares a plant touches in either
+// image (any pixel with a channel below 250), the share whose mean colour differs by more than
+// 24 levels in a channel.
+double changed_block_share(const std::string& a, const std::string& b, int block) {
+  const cv::Mat x = cv::imread(a, cv::IMREAD_COLOR), y = cv::imread(b, cv::IMREAD_COLOR);
+  EXPECT_EQ(x.size(), y.size());
+  if (x.size() != y.size() || x.empty()) return 1.0;
+  cv::Mat channels[3], small_x, small_y, small_cover;
+  cv::split(cv::min(x, y), channels);
+  const cv::Mat cover = cv::min(cv::min(channels[0], channels[1]), channels[2]) < 250;
+  const cv::Size small(x.cols / block, x.rows / block);
+  cv::resize(x, small_x, small, 0, 0, cv::INTER_AREA);
+  cv::resize(y, small_y, small, 0, 0, cv::INTER_AREA);
+  cv::resize(cover, small_cover, small, 0, 0, cv::INTER_AREA);  // > 0: touched
+  size_t covered = 0, changed = 0;
+  for (int r = 0; r < small_x.rows; ++r)
+    for (int c = 0; c < small_x.cols; ++c) {
+      if (!small_cover.at<uint8_t>(r, c)) continue;
+      const cv::Vec3b p = small_x.at<cv::Vec3b>(r, c), q = small_y.at<cv::Vec3b>(r, c);
+      bool differ = false;
+      for (int k = 0; k < 3; ++k)
+        differ = differ || std::abs(int(p[k]) - int(q[k])) > 24;
+      ++covered;
+      changed += differ;
+    }
+  return covered ? double(changed) / double(covered) : 1.0;
+}
+
+// Line drawings: the share of line pixels (grey below 128) of either image farther than 3 px
+// from every line pixel of the other.
+double moved_line_share(const std::string& a, const std::string& b) {
+  const cv::Mat x = cv::imread(a, cv::IMREAD_GRAYSCALE), y = cv::imread(b, cv::IMREAD_GRAYSCALE);
+  EXPECT_EQ(x.size(), y.size());
+  if (x.size() != y.size() || x.empty()) return 1.0;
+  size_t lines = 0, moved = 0;
+  for (const auto& [from, to] : {std::pair{x, y}, std::pair{y, x}}) {
+    cv::Mat distance;
+    cv::distanceTransform(to >= 128, distance, cv::DIST_L2, 3);  // to the nearest line pixel
+    for (int r = 0; r < from.rows; ++r)
+      for (int c = 0; c < from.cols; ++c)
+        if (from.at<uint8_t>(r, c) < 128) {
+          ++lines;
+          moved += distance.at<float>(r, c) > 3.0f;
+        }
+  }
+  return lines ? double(moved) / double(lines) : 1.0;
+}
+
+// Distant plants (about 60 to 100 px tall at 640 x 480) drawn at their levels of detail against
+// drawn whole: the bounds the README states (Scenes of many plants).
+TEST(Lod, DistantPlantsChangeLittle) {
+  const std::string dir = temp_dir("lod");
+  for (const char* style : {"standard", "ink"}) {
+    for (const char* lod : {"on", "off"}) {
+      const RunResult r = run_sylva("render " + park() + " --style " + style + " --lod " + lod +
+                                    " --size 640x480 -o " + dir + "/" + style + "-" + lod + ".png");
+      ASSERT_EQ(r.status, 0) << r.output;
+    }
+    const std::string on = dir + "/" + style + "-on.png", off = dir + "/" + style + "-off.png";
+    const bool ink = std::string(style) == "ink";
+    const double share = ink ? moved_line_share(on, off) : changed_block_share(on, off, 16);
+    std::printf("%s: %.4f\n", style, share);
+    EXPECT_LE(share, 0.05) << style;
+    EXPECT_NE(read_file(on), read_file(off)) << style << ": the levels of detail were not used";
+  }
+  expect_input_error("render " + park() + " --lod maybe --size 64 -o " + dir + "/x.png", "--lod");
 }
 
 // The ka of every vertex of `a` against `b`'s same mesh: root mean square difference.

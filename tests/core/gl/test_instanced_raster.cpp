@@ -129,5 +129,57 @@ TEST(InstancedRaster, InstancesOutOfViewAreNotDrawnAndChangeNothing) {
   EXPECT_EQ(differing(before.id, after.id, 0), 0.0);
 }
 
+// Every level of `s`'s one plant: the crown's first sphere (its first third of triangles) and
+// the whole trunk, as vertex and triangle sources.
+std::vector<PlantLod> first_sphere_levels(const Scene& s) {
+  PlantLod lod;
+  for (int l = 0; l < kLodLevels; ++l) {
+    std::vector<LodMesh> level;
+    for (uint32_t mi : s.plants[0].meshes) {
+      const Mesh& m = s.meshes[mi];
+      LodMesh out;
+      out.positions = m.positions;
+      for (uint32_t v = 0; v < m.positions.size(); ++v)
+        out.source.push_back(v);
+      const size_t keep = m.roles[0] == Role::Foliage ? m.triangle_count() / 3 : m.triangle_count();
+      for (uint32_t t = 0; t < keep; ++t) {
+        out.triangle_source.push_back(t);
+        out.indices.insert(out.indices.end(), m.indices.begin() + 3 * t,
+                           m.indices.begin() + 3 * t + 3);
+      }
+      level.push_back(out);
+    }
+    lod.levels.push_back(level);
+  }
+  return {lod};
+}
+
+GBuffer render_lod(const Scene& s, const Camera& cam, bool lod) {
+  Rasterizer r(gl());
+  r.upload(s);
+  if (lod) r.set_lod(s, first_sphere_levels(s));
+  return r.render(cam, Lighting::three_point(), request_of(Target::Color | Target::Id));
+}
+
+TEST(InstancedRaster, LevelsOfDetailFollowTheProjectedSize) {
+  const Scene s = plant_scene(false);
+  // Large on screen (about 1,700 triangles over thousands of pixels each): drawn whole.
+  const Camera near = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 240, 240);
+  EXPECT_EQ(differing(render_lod(s, near, true).color, render_lod(s, near, false).color, 0), 0.0);
+  // A few dozen pixels across: drawn at a coarser level, as the scene with only those
+  // triangles is.
+  const Camera far = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 40, 40);
+  const GBuffer coarse = render_lod(s, far, true);
+  EXPECT_GT(differing(coarse.color, render_lod(s, far, false).color, 0), 0.0);
+  Scene reduced = s;
+  const PlantLod lod = first_sphere_levels(s)[0];
+  for (size_t k = 0; k < s.plants[0].meshes.size(); ++k) {
+    Mesh& m = reduced.meshes[s.plants[0].meshes[k]];
+    m = lod_as_mesh(m, lod.levels[0][k]);
+  }
+  EXPECT_EQ(differing(coarse.color, render_lod(reduced, far, false).color, 0), 0.0);
+  EXPECT_EQ(differing(coarse.id, render_lod(reduced, far, false).id, 0), 0.0);
+}
+
 }  // namespace
 }  // namespace sylva
