@@ -70,11 +70,11 @@ void add_triangle(Decimating& d, std::vector<OMesh::VertexHandle>& handle, const
   if (face.is_valid()) d.mesh.property(d.triangle, face) = t;
 }
 
-// Quadric decimation (halfedge collapses, no face turned by more than 45 degrees) to half
-// the faces.
-void decimate_half(Decimating& d) {
+// Quadric decimation (halfedge collapses, no face turned by more than 45 degrees) to
+// `target` faces.
+void decimate_to(Decimating& d, size_t target) {
   const size_t faces = d.mesh.n_faces();
-  if (faces < 2) return;
+  if (faces <= target) return;
   d.mesh.request_face_normals();
   d.mesh.update_face_normals();
   OpenMesh::Decimater::DecimaterT<OMesh> decimater(d.mesh);
@@ -85,7 +85,7 @@ void decimate_half(Decimating& d) {
   decimater.module(quadric).unset_max_err();
   decimater.module(no_flips).set_max_normal_deviation(45.0);
   decimater.initialize();
-  decimater.decimate_to_faces(0, std::max<size_t>(1, faces / 2));
+  decimater.decimate_to_faces(0, std::max<size_t>(1, target));
   d.mesh.garbage_collection();
 }
 
@@ -172,21 +172,58 @@ void split_mesh(const Mesh& m, std::vector<Leaf>& leaves, std::vector<uint32_t>&
   }
 }
 
+// A connected piece of the triangles left for decimation (a branch, a frond) and its size.
+struct Piece {
+  std::vector<uint32_t> triangles;
+  float diagonal = 0.0f;
+};
+
+// The pieces of `rest` by primitive id, largest first (ties: first triangle).
+std::vector<Piece> pieces_of(const Mesh& m, const std::vector<uint32_t>& rest) {
+  std::map<uint32_t, size_t> index;
+  std::vector<Piece> pieces;
+  std::vector<Bounds> bounds;
+  for (uint32_t t : rest) {
+    auto [it, added] = index.emplace(m.primitive_ids[t], pieces.size());
+    if (added) pieces.emplace_back(), bounds.emplace_back();
+    pieces[it->second].triangles.push_back(t);
+    for (int k = 0; k < 3; ++k)
+      bounds[it->second].extend(m.positions[m.indices[3 * t + size_t(k)]]);
+  }
+  for (size_t i = 0; i < pieces.size(); ++i)
+    pieces[i].diagonal = bounds[i].diagonal();
+  std::stable_sort(pieces.begin(), pieces.end(),
+                   [](const Piece& a, const Piece& b) { return a.diagonal > b.diagonal; });
+  return pieces;
+}
+
+// The pieces at `target` triangles: the largest ones that fit (twigs go first, the trunk
+// stays), decimated when the largest alone is more.
+void append_pieces(const Mesh& m, const std::vector<Piece>& pieces, size_t target, LodMesh& out) {
+  Decimating d;
+  std::vector<OMesh::VertexHandle> handle(m.positions.size());
+  size_t kept = 0;
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    if (i > 0 && kept + pieces[i].triangles.size() > target) break;
+    for (uint32_t t : pieces[i].triangles)
+      add_triangle(d, handle, m, t);
+    kept += pieces[i].triangles.size();
+  }
+  decimate_to(d, target);
+  append_decimated(d, out);
+}
+
 // Levels 1..kLodLevels of one mesh.
 std::vector<LodMesh> mesh_levels(const Mesh& m) {
   std::vector<Leaf> leaves;
   std::vector<uint32_t> ids, rest;
   split_mesh(m, leaves, ids, rest);
-  Decimating d;
-  std::vector<OMesh::VertexHandle> handle(m.positions.size());
-  for (uint32_t t : rest)
-    add_triangle(d, handle, m, t);
+  const std::vector<Piece> pieces = pieces_of(m, rest);
   std::vector<LodMesh> out(kLodLevels);
   for (int l = 1; l <= kLodLevels; ++l) {
-    decimate_half(d);
     LodMesh& lod = out[size_t(l - 1)];
     append_pruned(leaves, ids, m, std::pow(0.5, l), float(std::pow(std::sqrt(2.0), l)), lod);
-    append_decimated(d, lod);
+    append_pieces(m, pieces, std::max<size_t>(1, rest.size() >> l), lod);
   }
   return out;
 }

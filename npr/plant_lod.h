@@ -4,9 +4,11 @@
 // needles) are pruned as in Cook, Halstead, Planck & Ebert 2007 ("Stochastic simplification
 // of aggregate detail"): a seeded half of them is kept per level and each kept one is
 // enlarged about its centroid by sqrt(2) (twice its area), so the crown covers about the same
-// pixels;
-// everything else (wood, large fronds) is decimated with OpenMesh's quadric decimater
-// (halfedge collapses, so every remaining vertex is one of the mesh's own). Each level
+// pixels. Everything else (wood, large fronds) is cut in connected pieces, and a level keeps
+// the largest pieces (by bounding-box diagonal) that fit in half the triangles of the level
+// before, so twigs go first and the trunk and main branches stay; when the largest piece alone
+// is more, it is decimated with OpenMesh's quadric decimater (halfedge collapses, so every
+// remaining vertex is one of the mesh's own). Each level
 // vertex names the plant vertex it comes from, so normals, uvs, colours and the Luft
 // shading carry over; each triangle names the triangle whose ids and role it keeps.
 // Deterministic; computed once per plant and cached (npr/foliage_cache.h's ResultCache).

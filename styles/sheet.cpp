@@ -1,5 +1,7 @@
 #include "styles/sheet.h"
 
+#include "core/gl/instance_draws.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -199,6 +201,8 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.rasterizer = setup.rasterizer;
     context.camera = setup.camera;
     context.scene_sphere = scene.scene_sphere;
+    if (scene.scene && scene.scene->instanced())
+      context.shadow_sphere = visible_instances_sphere(*scene.scene, setup.camera);
     context.branch_cluster = scene.branch_cluster;
     context.blobs = scene.blobs;
     auto s = scope("cell-" + std::to_string(i));

@@ -38,7 +38,9 @@ int add_key_shadow_pass(RenderGraph& graph, const StyleContext& context, int siz
   }
   RasterSetup rs;
   rs.rasterizer = context.rasterizer;
-  rs.camera = make_light_camera(context.scene_sphere, v, point, size);
+  rs.camera = context.shadow_sphere.empty()
+                  ? make_light_camera(context.scene_sphere, v, point, size)
+                  : make_light_camera(context.shadow_sphere, v, point, size, context.scene_sphere);
   rs.lighting = context.lighting;
   const GBufferHandles g = add_raster_pass(graph, rs);
   const glm::mat4 view = rs.camera.view, proj = rs.camera.proj;

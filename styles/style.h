@@ -29,6 +29,10 @@ struct StyleContext {
   // scene and a sphere around it. May be null/empty when no such style is built.
   Rasterizer* rasterizer = nullptr;
   Sphere scene_sphere;
+  // What the key light's shadow map covers: in a scene of many plants the instances the camera
+  // sees (visible_instances_sphere), the whole scene_sphere still casting into it; empty = the
+  // scene_sphere (a flat scene).
+  Sphere shadow_sphere;
   Camera camera;  // the frame's camera (blobs.outlines = alone renders it once per cluster)
   // The cluster id of trunk and branches (Scene::branch_cluster_id), 0 = none: the blobs
   // style paints them as its base layer rather than as a blob.

@@ -47,7 +47,11 @@ Camera make_file_camera(const SceneCamera& camera, const Sphere& sphere, int wid
 // `toward_light` (world direction from the scene toward a directional light, any length
 // > 0), or, when `point` is set, perspective from the world position `toward_light` aimed at
 // the centre (a light inside the sphere gets a 150 degree field of view). Depth hugs the
-// sphere. size in [1, 16384] pixels.
-Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size);
+// sphere. size in [1, 16384] pixels. For a directional light, a non-empty `casters` sphere
+// (the whole scene, when `sphere` holds only what the picture shows) moves the near plane
+// toward the light until every caster in it is in front of the camera, so what stands
+// outside `sphere` still casts its shadow into it.
+Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size,
+                         const Sphere& casters = {});
 
 }  // namespace sylva

@@ -13,19 +13,40 @@ namespace sylva {
 
 namespace {
 
-// The plant's bounding sphere in plant space: the box's centre, through its farthest vertex.
-glm::vec4 plant_sphere(const Scene& scene, size_t plant) {
+// The plant's bounding sphere in plant space: the box's centre, through its farthest vertex;
+// without_ground: of its triangles that are not ground only (radius < 0: none).
+glm::vec4 plant_sphere(const Scene& scene, size_t plant, bool without_ground = false) {
+  std::vector<glm::vec3> points;
+  for (uint32_t mi : plant_meshes(scene, plant)) {
+    const Mesh& m = scene.meshes[mi];
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+      if (!without_ground || t >= m.roles.size() || m.roles[t] != Role::Ground)
+        for (int k = 0; k < 3; ++k)
+          points.push_back(m.positions[m.indices[3 * t + size_t(k)]]);
+  }
   Bounds b;
-  for (uint32_t mi : plant_meshes(scene, plant))
-    for (const glm::vec3& p : scene.meshes[mi].positions)
-      b.extend(p);
+  for (const glm::vec3& p : points)
+    b.extend(p);
   if (b.empty()) return glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
   const glm::vec3 c = b.center();
   float r = 0.0f;
-  for (uint32_t mi : plant_meshes(scene, plant))
-    for (const glm::vec3& p : scene.meshes[mi].positions)
-      r = std::max(r, glm::length(p - c));
+  for (const glm::vec3& p : points)
+    r = std::max(r, glm::length(p - c));
   return glm::vec4(c, r * 1.001f + 1e-6f);
+}
+
+// Instance `t`'s world bounding sphere of a plant sphere `s`.
+glm::vec4 world_sphere(const glm::vec4& s, const glm::mat4& t) {
+  float scale = 0.0f;
+  for (int k = 0; k < 3; ++k)
+    scale = std::max(scale, glm::length(glm::vec3(t[k])));
+  return glm::vec4(glm::vec3(t * glm::vec4(glm::vec3(s), 1.0f)), s.w * scale);
+}
+
+bool in_view(const std::array<glm::vec4, 6>& planes, const glm::vec4& s) {
+  for (const glm::vec4& p : planes)
+    if (glm::dot(glm::vec3(p), glm::vec3(s)) + p.w < -s.w) return false;
+  return true;
 }
 
 // The view volume's six planes (Gribb & Hartmann), normalised, inside where >= 0.
@@ -41,6 +62,31 @@ std::array<glm::vec4, 6> view_planes(const Camera& camera) {
 }
 
 }  // namespace
+
+Sphere visible_instances_sphere(const Scene& scene, const Camera& camera) {
+  Sphere out;
+  if (!scene.instanced()) return out;
+  std::vector<glm::vec4> spheres;
+  for (size_t p = 0; p < scene.plants.size(); ++p)
+    spheres.push_back(plant_sphere(scene, p, true));
+  const std::array<glm::vec4, 6> planes = view_planes(camera);
+  std::vector<glm::vec4> seen;
+  Bounds b;
+  for (const Instance& inst : scene.instances) {
+    if (spheres[inst.plant].w < 0.0f) continue;
+    const glm::vec4 s = world_sphere(spheres[inst.plant], inst.transform);
+    if (!in_view(planes, s)) continue;
+    seen.push_back(s);
+    b.extend(glm::vec3(s) - glm::vec3(s.w));
+    b.extend(glm::vec3(s) + glm::vec3(s.w));
+  }
+  if (seen.empty()) return out;
+  out.centre = b.center();
+  out.radius = 0.0f;
+  for (const glm::vec4& s : seen)
+    out.radius = std::max(out.radius, glm::length(glm::vec3(s) - out.centre) + s.w);
+  return out;
+}
 
 void InstanceDraws::upload(const Scene& scene) {
   release();
@@ -115,14 +161,8 @@ std::vector<InstanceBatch> InstanceDraws::prepare(const Camera& camera, int ssaa
     if (s.w < 0.0f) continue;
     const glm::mat4 model(m_records[i].model[0], m_records[i].model[1], m_records[i].model[2],
                           m_records[i].model[3]);
-    const glm::vec3 c(model * glm::vec4(glm::vec3(s), 1.0f));
-    float scale = 0.0f;
-    for (int k = 0; k < 3; ++k)
-      scale = std::max(scale, glm::length(glm::vec3(model[k])));
-    bool inside = true;
-    for (const glm::vec4& p : planes)
-      inside = inside && glm::dot(glm::vec3(p), c) + p.w >= -s.w * scale;
-    if (inside) level[i] = level_of(i, c, s.w * scale, camera, ssaa);
+    const glm::vec4 w = world_sphere(s, model);
+    if (in_view(planes, w)) level[i] = level_of(i, glm::vec3(w), w.w, camera, ssaa);
   }
   std::vector<Record> data;
   std::vector<InstanceBatch> batches;

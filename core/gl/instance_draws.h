@@ -35,6 +35,11 @@ struct InstanceBatch {
   bool mirrored = false;  // the transform's determinant is negative: front faces are CW
 };
 
+// The sphere around the instances `camera` sees (their plants' bounding spheres, ground left
+// out, moved by their transforms), for fitting a shadow map to what the picture shows; empty
+// when the scene is flat or no instance is in view.
+Sphere visible_instances_sphere(const Scene& scene, const Camera& camera);
+
 class InstanceDraws {
  public:
   // The owner calls release() while the GL context is current; destruction frees nothing.

@@ -283,5 +283,24 @@ TEST(FileCamera, KeepsTheFilesViewFieldAndClippingWithTheImagesAspect) {
   EXPECT_THROW(make_file_camera(f, sphere, 16385, 100), InputError);
 }
 
+TEST(Camera, LightCameraReachesCastersOutsideItsSphere) {
+  const Sphere visible{glm::vec3(0.0f), 1.0f};
+  const glm::vec3 up(0, 1, 0);
+  const Camera plain = make_light_camera(visible, up, false, 64);
+  // Without casters: exactly as before the option existed.
+  const Camera same = make_light_camera(visible, up, false, 64, Sphere{});
+  EXPECT_EQ(plain.view, same.view);
+  EXPECT_EQ(plain.proj, same.proj);
+  // A caster 10 units up (toward the light) must be in front of the near plane.
+  const Sphere casters{glm::vec3(0, 5, 0), 6.0f};
+  const Camera c = make_light_camera(visible, up, false, 64, casters);
+  const glm::vec4 top = c.view * glm::vec4(0, 10.5f, 0, 1);
+  EXPECT_GT(-top.z, c.near_plane);
+  const glm::vec4 bottom = c.view * glm::vec4(0, -1, 0, 1);
+  EXPECT_LT(-bottom.z, c.far_plane);
+  // The covered width is still the visible sphere's.
+  EXPECT_EQ(c.proj[0][0], plain.proj[0][0]);
+}
+
 }  // namespace
 }  // namespace sylva

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <opencv2/core.hpp>
 
+#include "core/gl/instance_draws.h"
 #include "core/gl/rasterizer.h"
 #include "core/scene/instances.h"
 #include "core/scene/load.h"
@@ -179,6 +180,19 @@ TEST(InstancedRaster, LevelsOfDetailFollowTheProjectedSize) {
   }
   EXPECT_EQ(differing(coarse.color, render_lod(reduced, far, false).color, 0), 0.0);
   EXPECT_EQ(differing(coarse.id, render_lod(reduced, far, false).id, 0), 0.0);
+}
+
+TEST(InstancedRaster, TheVisibleSphereHoldsTheInstancesInViewOnly) {
+  Scene s = plant_scene(true);  // with a ground plant, which is left out
+  const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 160, 160);
+  const Sphere all = visible_instances_sphere(s, cam);
+  ASSERT_FALSE(all.empty());
+  EXPECT_LT(all.radius, 3.0f);  // not the 6-unit ground
+  s.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(500, 0, 0)), "far"});
+  const Sphere seen = visible_instances_sphere(s, cam);
+  EXPECT_EQ(seen.centre, all.centre);
+  EXPECT_EQ(seen.radius, all.radius);
+  EXPECT_TRUE(visible_instances_sphere(flatten(s), cam).empty());  // a flat scene: none
 }
 
 }  // namespace
