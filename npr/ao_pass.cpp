@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/scene/instances.h"
+#include "npr/ao_plants.h"
 #include "npr/ao_reference.h"
 #include "npr/ao_uniforms.h"
 
@@ -125,8 +126,7 @@ std::vector<glm::vec3> foliage_vertices(const Scene& scene) {
 }
 
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t seed) {
-  // The shells and the crown are fitted in world space: to the flattened instances.
-  if (scene.instanced()) return scene_ao_shading(flatten(scene), s, seed);
+  if (scene.instanced()) return plants_ao_shading(scene, s, seed);
   AoShading ao;
   ao.model = ao_model_of(s.model);
   ao.constant = s.constant;

@@ -109,7 +109,8 @@ void InstanceDraws::upload(const Scene& scene) {
     const glm::mat3 n = normal_matrix(inst.transform);
     for (int c = 0; c < 3; ++c)
       r.normal[c] = glm::vec4(n[c], 0.0f);
-    r.ids = glm::uvec4(ids.bases[i].primitive, ids.bases[i].cluster, ids.bases[i].object, 0u);
+    r.ids =
+        glm::uvec4(ids.bases[i].primitive, ids.bases[i].cluster, ids.bases[i].object, inst.plant);
     m_records.push_back(r);
     m_plant.push_back(inst.plant);
     m_mirrored.push_back(glm::determinant(glm::mat3(inst.transform)) < 0.0f);
@@ -211,7 +212,7 @@ void InstanceDraws::bind(const InstanceBatch& batch) const {
     glVertexAttribDivisor(kAttribNormalMatrix + c, 1);
     glEnableVertexAttribArray(kAttribNormalMatrix + c);
   }
-  glVertexAttribIPointer(kAttribIdBase, 3, GL_UNSIGNED_INT, stride, at(offsetof(Record, ids)));
+  glVertexAttribIPointer(kAttribIdBase, 4, GL_UNSIGNED_INT, stride, at(offsetof(Record, ids)));
   glVertexAttribDivisor(kAttribIdBase, 1);
   glEnableVertexAttribArray(kAttribIdBase);
   glBindBuffer(GL_ARRAY_BUFFER, 0);

@@ -75,7 +75,7 @@ class InstanceDraws {
   struct Record {
     glm::vec4 model[4];
     glm::vec4 normal[3];  // the normal matrix's columns (w unused)
-    glm::uvec4 ids;       // primitive, cluster, object bases (w unused)
+    glm::uvec4 ids;       // primitive, cluster, object bases; the plant
   };
   std::vector<Record> m_records;     // per scene instance
   std::vector<uint32_t> m_plant;     // per scene instance

@@ -9,6 +9,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/gl/ao_buffers.h"
 #include "core/gl/downsample.h"
 #include "core/gl/gpu_scene.h"
 #include "core/gl/instance_draws.h"
@@ -104,6 +105,7 @@ struct Rasterizer::Impl {
   std::vector<std::vector<size_t>> plant_meshes;  // instanced: per plant, indices into meshes
   LodMeshes lod;                                  // levels of detail (set_lod)
   InstanceDraws instances;
+  AoBuffers ao_buffers;  // a scene of many plants' AO (instanced programs only)
   size_t drawn_instances = 0;
   size_t queued_triangles = 0;  // instanced triangles drawn since the last glFinish
   std::vector<GLuint> textures;
@@ -126,6 +128,7 @@ struct Rasterizer::Impl {
     plant_meshes.clear();
     lod.release();
     instances.release();
+    ao_buffers.release();
     if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
     textures.clear();
     texture_means.clear();
@@ -218,6 +221,7 @@ struct Rasterizer::Impl {
     if (!variant) {
       variant = &program(targets, alpha_test);
       set_frame_uniforms(*variant, camera, lighting, request, instances.branch_cluster());
+      if (instances.instanced()) ao_buffers.bind(*variant);
     }
     const RasterProgram& p = *variant;
     glUseProgram(p.id);
@@ -482,6 +486,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
+  if (s.instances.instanced()) s.ao_buffers.upload(ao);
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

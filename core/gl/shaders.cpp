@@ -21,7 +21,7 @@ layout(location = 6) in float a_ka;  // a separate ambient coefficient, or -1: u
 // bases added to the plant's own primitive, foliage cluster and object ids.
 layout(location = 7) in mat4 a_model;
 layout(location = 11) in mat3 a_normal_matrix;
-layout(location = 14) in uvec3 a_id_base;
+layout(location = 14) in uvec4 a_id_base;  // w: the plant
 uniform uint u_branch_cluster;  // the one cluster id of every instance's non-foliage
 #endif
 
@@ -39,6 +39,11 @@ out vec2 v_uv;
 out vec4 v_color;
 flat out uint v_id;
 flat out uint v_role;
+#ifdef INSTANCED
+flat out uint v_plant;
+out vec3 v_plant_pos;
+flat out vec3 v_m0, v_m1, v_m2;
+#endif
 
 void main() {
   // Luft et al. Sec. 3.2: ka is stored as the normal's length; unit normals mean ka = 1.
@@ -53,6 +58,11 @@ void main() {
   uvec2 ids = uvec2(a_ids.x + a_id_base.x, a_role == 0u || u_branch_cluster == 0u
                                                ? a_ids.y + a_id_base.y : u_branch_cluster);
   uint object_id = u_object_id + a_id_base.z;
+  v_plant = a_id_base.w;
+  v_plant_pos = a_position;
+  v_m0 = a_model[0].xyz;
+  v_m1 = a_model[1].xyz;
+  v_m2 = a_model[2].xyz;
 #else
   vec3 world_pos = a_position;
   vec3 unit_normal = len > 1e-20 ? a_normal / len : vec3(0.0);
@@ -84,6 +94,23 @@ in vec2 v_uv;
 in vec4 v_color;
 flat in uint v_id;
 flat in uint v_role;
+#ifdef INSTANCED
+flat in uint v_plant;       // the instance's plant
+in vec3 v_plant_pos;        // plant-space position
+flat in vec3 v_m0, v_m1, v_m2;  // the instance transform's 3x3 columns
+struct AoShell {
+  vec4 centre;  // w: volume scale |det L|
+  vec4 anchor;
+  vec4 inverse[3];
+  vec4 transpose[3];
+};
+layout(std430, binding = 0) readonly buffer AoShellBuffer { AoShell ao_shells[]; };
+layout(std430, binding = 1) readonly buffer AoPlantBuffer { uvec4 ao_plants[]; };
+layout(std430, binding = 2) readonly buffer AoCrownBuffer { vec4 ao_crowns[]; };
+layout(std430, binding = 3) readonly buffer AoGridBuffer { uint ao_grid[]; };
+uniform vec4 u_ao_grid;         // x and z of the grid's corner, cell size (<= 0: no crowns)
+uniform ivec2 u_ao_grid_cells;  // cells along x and z
+#endif
 
 uniform vec4 u_base_color;      // linear RGBA factor
 uniform bool u_has_texture;
@@ -160,23 +187,13 @@ vec3 surface_normal() {
   return u_double_sided && !gl_FrontFacing && !keep ? -n : n;
 }
 
-// Hegeman et al. Eq. 4-6 for the world point x with world normal n, as npr/hegeman_ao.cpp's
-// hegeman_visibility (ball_cap in the unit ball of the shell whose anchor is nearest).
-float hegeman_visibility(vec3 x, vec3 n) {
-  if (u_ao_shell_count <= 0) return 1.0;
-  int s = 0;
-  float best = 3.4e38;
-  for (int i = 0; i < u_ao_shell_count; ++i) {
-    vec3 e = x - u_ao_anchor[i];
-    float d = dot(e, e);
-    if (d < best) {
-      best = d;
-      s = i;
-    }
-  }
-  if (!(u_ao_alpha_rho > 0.0) || !(u_ao_volume_scale[s] > 0.0)) return 1.0;
-  vec3 to_centre = -(u_ao_inverse[s] * (x - u_ao_centre[s]));
-  vec3 nu = u_ao_transpose[s] * n;
+// Hegeman et al. Eq. 4-6 for the point x with normal n in one shell (ball_cap in its unit
+// ball), as npr/hegeman_ao.cpp's hegeman_visibility.
+float shell_visibility(vec3 x, vec3 n, vec3 centre, mat3 inverse, mat3 transpose,
+                       float volume_scale, float alpha_rho) {
+  if (!(alpha_rho > 0.0) || !(volume_scale > 0.0)) return 1.0;
+  vec3 to_centre = -(inverse * (x - centre));
+  vec3 nu = transpose * n;
   float len = length(nu);
   float t = 0.0;
   vec3 in_plane = vec3(0.0);
@@ -189,12 +206,29 @@ float hegeman_visibility(vec3 x, vec3 n) {
   }
   float h = clamp(1.0 + t, 0.0, 2.0);
   float d = length(in_plane);
-  float volume = 3.14159265358979 * h * h * (3.0 - h) / 3.0 * u_ao_volume_scale[s];  // Eq. 4
+  float volume = 3.14159265358979 * h * h * (3.0 - h) / 3.0 * volume_scale;  // Eq. 4
   float h2 = h * h, d2 = d * d;
   float f = h2 + d2 > 0.0 ? clamp(h2 / (h2 + d2), 0.0, 1.0) : 1.0;  // Eq. 5
-  float exponent = u_ao_alpha_rho * f * volume;
+  float exponent = alpha_rho * f * volume;
   if (!(exponent > 0.0)) return 1.0;
   return clamp(exp(-exponent), 0.0, 1.0);  // Eq. 6
+}
+
+// The shell of the world point x is the one whose anchor is nearest (lowest index on ties).
+float hegeman_visibility(vec3 x, vec3 n) {
+  if (u_ao_shell_count <= 0) return 1.0;
+  int s = 0;
+  float best = 3.4e38;
+  for (int i = 0; i < u_ao_shell_count; ++i) {
+    vec3 e = x - u_ao_anchor[i];
+    float d = dot(e, e);
+    if (d < best) {
+      best = d;
+      s = i;
+    }
+  }
+  return shell_visibility(x, n, u_ao_centre[s], u_ao_inverse[s], u_ao_transpose[s],
+                          u_ao_volume_scale[s], u_ao_alpha_rho);
 }
 
 const float kPi = 3.14159265358979;
@@ -220,12 +254,12 @@ float cone_solid_angle_above_horizon(float beta, float gamma) {
   return clamp(2.0 * (kPi - a1 - cb * a2), 0.0, full);
 }
 
-// Hegeman et al. Eq. 7-8 with horizon clipping, as npr/hegeman_ao.cpp's object_visibility:
-// the crown's sphere seen from x, clamped to its boundary value inside.
-float object_visibility(vec3 x, vec3 n) {
-  float r = u_ao_crown.w;
-  if (!(r > 0.0)) return 1.0;
-  vec3 to_centre = u_ao_crown.xyz - x;
+// The solid angle of the crown sphere (centre, radius; radius <= 0: none) above x's tangent
+// plane, as npr/hegeman_ao.cpp's object_visibility: clamped to its boundary value inside.
+float crown_solid_angle(vec3 x, vec3 n, vec4 crown) {
+  float r = crown.w;
+  if (!(r > 0.0)) return 0.0;
+  vec3 to_centre = crown.xyz - x;
   float dist = length(to_centre);
   float s = dist > r ? r / dist : 1.0;
   float a = sphere_solid_angle(s, u_ao_exact_solid_angle != 0);
@@ -240,8 +274,54 @@ float object_visibility(vec3 x, vec3 n) {
     }
     a *= clamp(share, 0.0, 1.0);
   }
-  return clamp(1.0 - a / (2.0 * kPi), 0.0, 1.0);  // Eq. 8
+  return a;
 }
+
+// Hegeman et al. Eq. 7-8 with horizon clipping: the crown's sphere seen from x.
+float object_visibility(vec3 x, vec3 n) {
+  return clamp(1.0 - crown_solid_angle(x, n, u_ao_crown) / (2.0 * kPi), 0.0, 1.0);  // Eq. 8
+}
+
+#ifdef INSTANCED
+// A scene of many plants (core/gl/ao_buffers.h): foliage by its own plant's shells in plant
+// space; everything else by the solid angles of the crowns near it, summed.
+float plant_hegeman_visibility(vec3 x, vec3 n) {
+  uvec4 plant = ao_plants[v_plant];
+  int first = int(plant.x), count = int(plant.y);
+  if (count <= 0) return 1.0;
+  int s = first;
+  float best = 3.4e38;
+  for (int i = first; i < first + count; ++i) {
+    vec3 e = x - ao_shells[i].anchor.xyz;
+    float d = dot(e, e);
+    if (d < best) {
+      best = d;
+      s = i;
+    }
+  }
+  AoShell shell = ao_shells[s];
+  mat3 inverse = mat3(shell.inverse[0].xyz, shell.inverse[1].xyz, shell.inverse[2].xyz);
+  mat3 transpose_ = mat3(shell.transpose[0].xyz, shell.transpose[1].xyz, shell.transpose[2].xyz);
+  return shell_visibility(x, n, shell.centre.xyz, inverse, transpose_, shell.centre.w,
+                          uintBitsToFloat(plant.z));
+}
+
+float crowns_visibility(vec3 x, vec3 n) {
+  if (!(u_ao_grid.z > 0.0)) return 1.0;
+  ivec2 cell = ivec2(floor((x.xz - u_ao_grid.xy) / u_ao_grid.z));
+  if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, u_ao_grid_cells))) return 1.0;
+  int at = 2 * (cell.y * u_ao_grid_cells.x + cell.x);
+  uint offset = ao_grid[at], count = ao_grid[at + 1];
+  float a = 0.0;
+  for (uint i = 0u; i < count; ++i) {
+    vec4 crown = ao_crowns[ao_grid[offset + i]];
+    vec3 e = crown.xyz - x;
+    float reach = 8.0 * crown.w;  // kAoCrownReach
+    if (dot(e, e) <= reach * reach) a += crown_solid_angle(x, n, crown);
+  }
+  return clamp(1.0 - a / (2.0 * kPi), 0.0, 1.0);  // Eq. 8, the crowns' angles added
+}
+#endif
 
 // Hegeman et al. Eq. 9, as npr/hegeman_ao.cpp's grass_visibility with up = +Y.
 float grass_visibility(vec3 x, vec3 n) {
@@ -266,8 +346,14 @@ float ground_plane_occlusion(vec3 x, vec3 n) {
 // crown's solid angle (Eq. 7-8), grass blades also by their height (Eq. 9), wood and other
 // geometry also by a flat ground under them.
 float hegeman_model_visibility(vec3 x, vec3 n) {
+#ifdef INSTANCED
+  if (v_role == 0u)  // Role::Foliage, in its plant's space (normals back by M^T)
+    return plant_hegeman_visibility(v_plant_pos, transpose(mat3(v_m0, v_m1, v_m2)) * n);
+  float v = crowns_visibility(x, n);
+#else
   if (v_role == 0u) return hegeman_visibility(x, n);  // Role::Foliage
   float v = object_visibility(x, n);
+#endif
   if (v_role == 4u) v *= grass_visibility(x, n);  // Role::Grass
   if (v_role == 1u || v_role == 3u) v -= ground_plane_occlusion(x, n);  // Wood, Other
   return clamp(v, 0.0, 1.0);
@@ -372,9 +458,10 @@ std::string raster_vertex_source(bool instanced) {
          kVertexBody;
 }
 
-std::string raster_fragment_source(TargetMask targets, bool alpha_test) {
+std::string raster_fragment_source(TargetMask targets, bool alpha_test, bool instanced) {
   std::string s = "#version 450 core\n";
   if (alpha_test) s += "#define ALPHA_TEST 1\n";
+  if (instanced) s += "#define INSTANCED 1\n";
   for (Target t : kAllTargets) {
     if (!has(targets, t)) continue;
     std::string name = target_name(t);
@@ -423,7 +510,7 @@ GLuint build_raster_program(TargetMask targets, bool alpha_test, bool instanced)
   GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(instanced), name + " vertex");
   GLuint fs = 0;
   try {
-    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test),
+    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test, instanced),
                         name + " fragment");
   } catch (...) {
     glDeleteShader(vs);
@@ -471,6 +558,8 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test, bool inst
   p.ao_exact_solid_angle = loc("u_ao_exact_solid_angle");
   p.ao_grass = loc("u_ao_grass");
   p.ao_ground = loc("u_ao_ground");
+  p.ao_grid = loc("u_ao_grid");
+  p.ao_grid_cells = loc("u_ao_grid_cells");
   return p;
 }
 

@@ -27,12 +27,12 @@ inline constexpr GLuint kAttribKa = 6;        // float ambient coefficient; < 0:
 // Per instance, in the INSTANCED variant (core/gl/instance_draws.h).
 inline constexpr GLuint kAttribModel = 7;          // mat4 (7 to 10), plant space -> world
 inline constexpr GLuint kAttribNormalMatrix = 11;  // mat3 (11 to 13)
-inline constexpr GLuint kAttribIdBase = 14;        // uvec3 (primitive, cluster, object) bases
+inline constexpr GLuint kAttribIdBase = 14;        // uvec4: primitive, cluster, object bases; plant
 
 // The full fragment/vertex source for a target mask (with "#version 450 core" and defines);
 // `instanced` adds the per-instance attributes (#define INSTANCED).
 std::string raster_vertex_source(bool instanced = false);
-std::string raster_fragment_source(TargetMask targets, bool alpha_test);
+std::string raster_fragment_source(TargetMask targets, bool alpha_test, bool instanced = false);
 
 // Compiles one stage; throws std::runtime_error with the info log on failure.
 GLuint compile_shader(GLenum stage, const std::string& source, const std::string& name);
@@ -48,7 +48,8 @@ struct RasterProgram {
       texture, alpha_cutoff, double_sided, has_normals, ortho, ambient, light_count, light_vector,
       light_color, light_spec, scaled_normals, oriented_foliage, flat_albedo, texture_mean,
       ao_model, ao_constant, ao_alpha_rho, ao_shell_count, ao_centre, ao_anchor, ao_inverse,
-      ao_transpose, ao_volume_scale, ao_crown, ao_exact_solid_angle, ao_grass, ao_ground;
+      ao_transpose, ao_volume_scale, ao_crown, ao_exact_solid_angle, ao_grass, ao_ground, ao_grid,
+      ao_grid_cells;
 };
 RasterProgram make_raster_program(TargetMask targets, bool alpha_test, bool instanced = false);
 

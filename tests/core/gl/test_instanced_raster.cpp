@@ -195,5 +195,80 @@ TEST(InstancedRaster, TheVisibleSphereHoldsTheInstancesInViewOnly) {
   EXPECT_TRUE(visible_instances_sphere(flatten(s), cam).empty());  // a flat scene: none
 }
 
+// One ellipsoidal shell around the crown (plant space) as the raster pass takes it.
+AoShading::PlantShells crown_shell() {
+  AoShading::PlantShells p;
+  p.alpha_rho = 3.0f;
+  const glm::mat3 l(glm::vec3(0.9f, 0.0f, 0.0f), glm::vec3(0.0f, 0.5f, 0.0f),
+                    glm::vec3(0.0f, 0.0f, 0.45f));  // axes * radii
+  p.centres = {glm::vec3(0.0f, 1.25f, 0.0f)};
+  p.anchors = p.centres;
+  p.inverse = {glm::inverse(l)};
+  p.transpose = {glm::transpose(l)};
+  p.volume_scale = {std::abs(glm::determinant(l))};
+  return p;
+}
+
+GBuffer render_ao(const Scene& s, const Camera& cam, const AoShading& ao) {
+  Rasterizer r(gl());
+  r.upload(s);
+  RasterRequest q = request_of(Target::Ao);
+  q.ao = ao;
+  return r.render(cam, Lighting::three_point(), q);
+}
+
+TEST(InstancedRaster, EachInstanceDarkensItsLeavesAsItsPlantAlone) {
+  // One instance turned and moved, against the same plant flattened with its shell moved
+  // alike into world space (the uniform path of a flat scene).
+  Scene s = plant_scene(false);
+  const glm::mat4 t =
+      glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 1)), 0.8f, glm::vec3(0, 1, 0));
+  s.instances = {{0, t, "one"}};
+  const Scene flat = flatten(s);
+  const AoShading::PlantShells shell = crown_shell();
+  AoShading instanced;
+  instanced.model = AoShading::Model::Shells;
+  instanced.plant_shells = {shell};
+  instanced.crowns = {glm::vec4(0.0f)};
+  AoShading world;
+  world.model = AoShading::Model::Shells;
+  world.alpha_rho = shell.alpha_rho;
+  const glm::mat3 r(t);
+  world.centres = {glm::vec3(t * glm::vec4(shell.centres[0], 1.0f))};
+  world.anchors = world.centres;
+  world.inverse = {shell.inverse[0] * glm::transpose(r)};
+  world.transpose = {shell.transpose[0] * glm::transpose(r)};
+  world.volume_scale = shell.volume_scale;
+  const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 160, 160);
+  const GBuffer a = render_ao(s, cam, instanced), b = render_ao(flat, cam, world);
+  EXPECT_LT(differing(a.ao, b.ao, 2e-3), 0.002);
+  double mean = cv::mean(a.ao, a.ao > 0)[0];
+  EXPECT_LT(mean, 0.95);  // the shell darkens the leaves
+}
+
+TEST(InstancedRaster, NeighbouringCrownsAddTheirOcclusion) {
+  // Wood and ground near two crowns are darker than near one; far from both, as without any.
+  Scene s = plant_scene(true);
+  AoShading ao;
+  ao.model = AoShading::Model::Shells;
+  ao.plant_shells = {crown_shell(), {}};  // the tree, the ground
+  for (const Instance& inst : s.instances)
+    ao.crowns.push_back(inst.plant == 0
+                            ? glm::vec4(glm::vec3(inst.transform * glm::vec4(0, 1.25f, 0, 1)), 0.6f)
+                            : glm::vec4(0.0f));
+  OrbitParams top;
+  top.elevation_deg = 89.0f;
+  const Camera cam = make_orbit_camera(s.framing_sphere(), top, 200, 200);
+  const GBuffer both = render_ao(s, cam, ao);
+  AoShading one = ao;
+  for (size_t i = 2; i < one.crowns.size(); ++i)
+    one.crowns[i] = glm::vec4(0.0f);  // only the ground's (none) and the first tree's
+  const GBuffer single = render_ao(s, cam, one);
+  EXPECT_LT(cv::sum(both.ao)[0], cv::sum(single.ao)[0] - 1.0);
+  cv::Mat darker = both.ao < single.ao - 1e-4f;
+  EXPECT_GT(cv::countNonZero(darker), 200);
+  EXPECT_EQ(cv::countNonZero(both.ao > single.ao + 1e-4f), 0);
+}
+
 }  // namespace
 }  // namespace sylva
