@@ -42,4 +42,8 @@ void replace_shading(GpuMesh& mesh, const std::vector<glm::vec3>& normals,
 // Throws InputError when the pixel data does not match the size.
 GLuint upload_texture(const Texture& tex);
 
+// The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
+// transparent surround); all texels when none is.
+glm::vec3 texture_mean(const Texture& t);
+
 }  // namespace sylva

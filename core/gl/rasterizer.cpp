@@ -53,25 +53,6 @@ constexpr SlotFormat kSlotFormats[kSlots] = {
 static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka &&
               kAllTargets[6] == Target::Albedo && kAllTargets[7] == Target::Ao);
 
-// The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
-// transparent surround); all texels when none is.
-glm::vec3 texture_mean(const Texture& t) {
-  glm::dvec3 sum(0.0), all(0.0);
-  size_t n = 0;
-  const size_t count = size_t(t.width) * size_t(t.height);
-  for (size_t i = 0; i < count && 4 * i + 3 < t.rgba.size(); ++i) {
-    glm::dvec3 c;
-    for (int k = 0; k < 3; ++k) {
-      const double v = t.rgba[4 * i + k] / 255.0;
-      c[k] = srgb_to_linear(float(v));
-    }
-    all += c;
-    if (t.rgba[4 * i + 3] >= 128) sum += c, ++n;
-  }
-  if (n > 0) return glm::vec3(sum / double(n));
-  return count > 0 ? glm::vec3(all / double(count)) : glm::vec3(1.0f);
-}
-
 float srgb_encode(float c) {
   return linear_to_srgb(c);
 }

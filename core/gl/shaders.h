@@ -34,6 +34,9 @@ inline constexpr GLuint kAttribIdBase = 14;        // uvec4: primitive, cluster,
 std::string raster_vertex_source(bool instanced = false);
 std::string raster_fragment_source(TargetMask targets, bool alpha_test, bool instanced = false);
 
+// The fragment shader's ambient visibility functions (core/gl/shader_ao.cpp).
+std::string raster_ao_glsl();
+
 // Compiles one stage; throws std::runtime_error with the info log on failure.
 GLuint compile_shader(GLenum stage, const std::string& source, const std::string& name);
 // Links (and deletes) the stages; throws std::runtime_error with the info log on failure.
