@@ -1,6 +1,7 @@
 #include "core/scene/scene.h"
 
 #include "core/scene/instances.h"
+#include "core/scene/point_tree.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,52 +56,81 @@ std::vector<std::string> SceneReport::warning_lines() const {
 
 namespace {
 
-// Calls fn(world position) for every vertex of a triangle passing keep(mesh, t), once per
-// instance of its plant. A flat scene's positions are passed as stored (no arithmetic); an
-// instance's go through the transform in double, as the glTF reader flattens nodes.
-template <class Keep, class Fn>
-void for_each_world_vertex(const Scene& scene, Keep keep, Fn fn) {
-  auto used = [&](const Mesh& m) {
-    std::vector<char> u(m.positions.size(), 0);
+// The vertices of the triangles passing keep(mesh, t) in `meshes`, each once, in mesh and
+// vertex order.
+template <class Keep>
+std::vector<glm::vec3> used_points(const Scene& scene, const std::vector<uint32_t>& meshes,
+                                   Keep keep) {
+  std::vector<glm::vec3> points;
+  for (uint32_t mi : meshes) {
+    const Mesh& m = scene.meshes[mi];
+    std::vector<char> used(m.positions.size(), 0);
     for (size_t t = 0; t < m.triangle_count(); ++t)
       if (keep(m, t))
         for (int k = 0; k < 3; ++k)
-          u[m.indices[3 * t + size_t(k)]] = 1;
-    return u;
-  };
+          used[m.indices[3 * t + size_t(k)]] = 1;
+    for (size_t v = 0; v < used.size(); ++v)
+      if (used[v]) points.push_back(m.positions[v]);
+  }
+  return points;
+}
+
+std::vector<uint32_t> all_meshes(const Scene& scene) {
+  std::vector<uint32_t> all(scene.meshes.size());
+  for (size_t m = 0; m < all.size(); ++m)
+    all[m] = uint32_t(m);
+  return all;
+}
+
+// Per plant, a tree of the vertices passing `keep` (an instanced scene).
+template <class Keep>
+std::vector<PointTree> plant_trees(const Scene& scene, Keep keep) {
+  std::vector<PointTree> trees;
+  for (const Plant& plant : scene.plants)
+    trees.emplace_back(used_points(scene, plant.meshes, keep));
+  return trees;
+}
+
+// The world bounds of the vertices passing `keep`: stored positions in a flat scene, every
+// instance's moved in double as the glTF reader flattens nodes (exactly, core/scene/
+// point_tree.h).
+template <class Keep>
+Bounds world_bounds(const Scene& scene, Keep keep) {
+  Bounds b;
   if (!scene.instanced()) {
-    for (const Mesh& m : scene.meshes) {
-      const std::vector<char> u = used(m);
-      for (size_t v = 0; v < u.size(); ++v)
-        if (u[v]) fn(m.positions[v]);
-    }
-    return;
+    for (const glm::vec3& p : used_points(scene, all_meshes(scene), keep))
+      b.extend(p);
+    return b;
   }
-  for (const Plant& plant : scene.plants) {
-    std::vector<glm::vec3> points;
-    for (uint32_t mi : plant.meshes) {
-      const Mesh& m = scene.meshes[mi];
-      const std::vector<char> u = used(m);
-      for (size_t v = 0; v < u.size(); ++v)
-        if (u[v]) points.push_back(m.positions[v]);
-    }
-    const auto p = uint32_t(&plant - scene.plants.data());
-    for (const Instance& inst : scene.instances) {
-      if (inst.plant != p) continue;
-      const glm::dmat4 t(inst.transform);
-      for (const glm::vec3& q : points)
-        fn(glm::vec3(t * glm::dvec4(q, 1.0)));
-    }
+  const std::vector<PointTree> trees = plant_trees(scene, keep);
+  for (const Instance& inst : scene.instances) {
+    const Bounds i = trees[inst.plant].moved_bounds(glm::dmat4(inst.transform));
+    if (!i.empty()) b.extend(i.min), b.extend(i.max);
   }
+  return b;
+}
+
+// The largest squared distance from c of the vertices passing `keep`, moved as above.
+template <class Keep>
+float world_max_distance2(const Scene& scene, Keep keep, const glm::vec3& c) {
+  float r2 = 0.0f;
+  if (!scene.instanced()) {
+    for (const glm::vec3& p : used_points(scene, all_meshes(scene), keep)) {
+      const glm::vec3 d = p - c;
+      r2 = std::max(r2, glm::dot(d, d));
+    }
+    return r2;
+  }
+  const std::vector<PointTree> trees = plant_trees(scene, keep);
+  for (const Instance& inst : scene.instances)
+    r2 = std::max(r2, trees[inst.plant].max_distance2(glm::dmat4(inst.transform), c));
+  return r2;
 }
 
 }  // namespace
 
 Bounds Scene::bounds() const {
-  Bounds b;
-  for_each_world_vertex(
-      *this, [](const Mesh&, size_t) { return true; }, [&](const glm::vec3& p) { b.extend(p); });
-  return b;
+  return world_bounds(*this, [](const Mesh&, size_t) { return true; });
 }
 
 Sphere Scene::framing_sphere() const {
@@ -115,26 +145,16 @@ Sphere Scene::framing_sphere() const {
   auto framed = [skip_ground](const Mesh& m, size_t t) {
     return !skip_ground || t >= m.roles.size() || m.roles[t] != Role::Ground;
   };
-  Bounds b;
-  for_each_world_vertex(*this, framed, [&](const glm::vec3& p) { b.extend(p); });
+  const Bounds b = world_bounds(*this, framed);
   Sphere s;
   if (b.empty()) return s;
   s.centre = b.center();
-  float r2 = 0.0f;
-  for_each_world_vertex(*this, framed, [&](const glm::vec3& p) {
-    const glm::vec3 d = p - s.centre;
-    r2 = std::max(r2, glm::dot(d, d));
-  });
-  s.radius = std::sqrt(r2);
+  s.radius = std::sqrt(world_max_distance2(*this, framed, s.centre));
   return s;
 }
 
 Bounds Scene::bounds(Role role) const {
-  Bounds b;
-  for_each_world_vertex(
-      *this, [role](const Mesh& m, size_t t) { return m.roles[t] == role; },
-      [&](const glm::vec3& p) { b.extend(p); });
-  return b;
+  return world_bounds(*this, [role](const Mesh& m, size_t t) { return m.roles[t] == role; });
 }
 
 size_t Scene::drawn_triangle_count() const {

@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <tuple>
 
 #include "core/scene/gltf_write.h"
 #include "core/scene/instances.h"
@@ -283,6 +284,35 @@ TEST(GpuInstancing, LoadsWithTheRightCountAndDrawsEveryInstance) {
   for (auto it = ids.begin<int32_t>(); it != ids.end<int32_t>(); ++it)
     if (*it) seen.insert(*it);
   EXPECT_EQ(seen, (std::set<int32_t>{1, 2, 3, 4, 5}));  // an object id per instance
+}
+
+TEST(GpuInstancing, BadAccessorsAreOneLineErrors) {
+  const std::string dir = temp_dir("gpu-instancing-bad");
+  for (const auto& [name, type, per] :
+       {std::tuple<const char*, const char*, size_t>{"TRANSLATION", "VEC2", 2},
+        {"SCALE", "SCALAR", 1}}) {
+    GltfBuilder b;
+    b.grid_mesh("leaves", 10, 6);
+    const std::vector<float> v(3 * per, 1.0f);
+    const std::vector<float> t = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};  // 4, not 3
+    Json attributes = {{name, b.floats(v, type, per)}};
+    if (std::string(name) == "SCALE") attributes["TRANSLATION"] = b.floats(t, "VEC3", 3);
+    b.node(
+        {{"mesh", 0}, {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", attributes}}}}}});
+    const std::string path = dir + "/" + name + ".gltf";
+    write_file(path, b.text());
+    expect_input_error("info " + path, name);
+    expect_input_error("render " + path + " --size 32 -o " + dir + "/x.png", name);
+  }
+  EXPECT_FALSE(file_exists(dir + "/x.png"));
+}
+
+TEST(Park, TheLargestCountIsAccepted) {
+  const std::string out = temp_dir("park-max") + "/max.glb";
+  const RunResult r =
+      run_sylva("sample park --plants " + lone_tree() + " --count 100000 --area 1000 -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(info_json(out)["instances"], 100000);
 }
 
 // The camera nodes of a .glb: name -> its node's matrix.

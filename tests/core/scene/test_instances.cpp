@@ -7,9 +7,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "core/scene/gltf_write.h"
 #include "core/scene/instances.h"
 #include "core/scene/load.h"
+#include "core/scene/point_tree.h"
 #include "tests/core/scene/gltf_builder.h"
 #include "tests/test_support.h"
 
@@ -345,6 +347,35 @@ TEST(FileCameras, ReadWithTheirNodesAndImpossibleOnesLeftOut) {
   EXPECT_NE(w[0].find("'zero fov': yfov must be in (0, pi); left out (and 1 more like it)"),
             std::string::npos)
       << w[0];
+}
+
+TEST(PointTree, ExtentsEqualMovingEveryPoint) {
+  const Scene fern = load_scene(test::fern_path());
+  std::vector<glm::vec3> points;
+  for (const Mesh& m : fern.meshes)
+    points.insert(points.end(), m.positions.begin(), m.positions.end());
+  const PointTree tree(points);
+  uint64_t state = 11;
+  auto u = [&] { return float(uniform01(state)); };
+  for (int i = 0; i < 40; ++i) {
+    glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3(20 * u() - 10, u(), 20 * u() - 10));
+    t = glm::rotate(t, 6.3f * u(), glm::normalize(glm::vec3(u() - 0.5f, u(), u() - 0.5f)));
+    t = glm::scale(t, glm::vec3(0.5f + u(), 0.5f + u(), i % 3 == 0 ? -1.0f : 0.5f + u()));
+    const glm::dmat4 d(t);
+    Bounds want;
+    const glm::vec3 c(u(), u(), u());
+    float far = 0.0f;
+    for (const glm::vec3& p : points) {
+      const glm::vec3 q(d * glm::dvec4(p, 1.0));
+      want.extend(q);
+      far = std::max(far, glm::dot(q - c, q - c));
+    }
+    const Bounds got = tree.moved_bounds(d);
+    EXPECT_EQ(got.min, want.min) << i;
+    EXPECT_EQ(got.max, want.max) << i;
+    EXPECT_EQ(tree.max_distance2(d, c), far) << i;
+  }
+  EXPECT_TRUE(PointTree({}).moved_bounds(glm::dmat4(1.0)).empty());
 }
 
 }  // namespace
