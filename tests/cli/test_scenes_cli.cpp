@@ -244,10 +244,25 @@ TEST(Park, BakeKeepsTheInstancingAndEachPlantsKaIsTheLonePlants) {
   EXPECT_EQ(glb_json(dir + "/park.glb")["meshes"].size(),
             glb_json(dir + "/lone.glb")["meshes"].size());
   ASSERT_EQ(baked.meshes.size(), lone.meshes.size());
+  const Json note = glb_json(dir + "/park.glb")["scenes"][0]["extras"]["sylva_baked"];
+  ASSERT_EQ(note["plants"].size(), 1u);
+  EXPECT_EQ(note["plants"][0]["rho"], note["rho"]);
   for (size_t m = 0; m < lone.meshes.size(); ++m) {
     EXPECT_EQ(baked.meshes[m].name, lone.meshes[m].name);
     EXPECT_LE(ka_rmse(baked.meshes[m], lone.meshes[m]), 0.01) << lone.meshes[m].name;
   }
+}
+
+TEST(Park, TheImplicitSurfacesArePlacedByTheInstances) {
+  const std::string dir = temp_dir("park-surface");
+  const RunResult r = run_sylva("render " + park() + " --style expressive --size 64 --no-cache " +
+                                "--surface-out " + dir + "/s.glb -o " + dir + "/e.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Scene s = load_scene(dir + "/s.glb");
+  ASSERT_TRUE(s.instanced());
+  EXPECT_EQ(s.plant_count(), 1u);
+  EXPECT_EQ(s.instance_count(), 12u);
+  EXPECT_GT(s.triangle_count(), 1000u);
 }
 
 // A glTF with one 120-triangle mesh drawn 5 times by EXT_mesh_gpu_instancing.
