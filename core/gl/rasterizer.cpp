@@ -22,7 +22,7 @@ namespace sylva {
 namespace {
 
 constexpr GLsizei kDrawChunkIndices = 3 * 32768;      // indices per draw call (32k triangles)
-constexpr size_t kQueuedTriangles = size_t(1) << 19;  // instanced triangles per glFinish
+constexpr size_t kQueuedTriangles = size_t(1) << 17;  // instanced triangles per glFinish
 constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
