@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
@@ -149,6 +150,9 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
   std::map<std::string, GBufferHandles> rasters;  // raster key -> its targets
   std::map<std::string, RasterRequest> requests;  // raster key -> its request
   SheetPlan plan;
+  // Read by the line styles only (compile() culls it otherwise).
+  const int samples =
+      scene.scene ? add_surface_samples_pass(graph, scene.scene, scene.samples_memo) : -1;
   for (size_t i = 0; i < styles.size(); ++i) {
     const Style& style = *styles[i];
     RasterSetup setup = scene.raster;
@@ -205,6 +209,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
       context.shadow_sphere = visible_instances_sphere(*scene.scene, setup.camera);
     context.branch_cluster = scene.branch_cluster;
     context.blobs = scene.blobs;
+    context.surface_samples = samples;
     auto s = scope("cell-" + std::to_string(i));
     const StyleOutput out = style.build(graph, rasters[rkey], context);
     // Vector output needs the strokes only: the raster ink and its composite are culled.

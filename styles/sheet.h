@@ -13,7 +13,8 @@
 #include "styles/style.h"
 
 namespace sylva {
-struct AoMemo;  // npr/ao_pass.h
+struct AoMemo;             // npr/ao_pass.h
+struct SurfaceSampleMemo;  // npr/surface_samples.h
 }  // namespace sylva
 
 namespace sylva {
@@ -66,6 +67,9 @@ struct SheetScene {
   // Set for many frames of one scene (memoize_preprocessing): the AO shells and the ray
   // tracer's BVH are computed once and shared. Null: per graph.
   std::shared_ptr<AoMemo> ao_memo;
+  // Set for many frames of one scene: the surface samples of the ink lines' crown coverage
+  // are made once. Null: per graph.
+  std::shared_ptr<SurfaceSampleMemo> samples_memo;
 };
 
 struct SheetPlan {

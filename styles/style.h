@@ -40,6 +40,9 @@ struct StyleContext {
   // The frame's blobs when an animation interpolates them between keyframes
   // (npr/blob_keyframes.h); null = shrink-wrap this frame's own clusters.
   std::shared_ptr<const BlobSet> blobs;
+  // The scene-level "surface-samples" node (npr/surface_samples.h) the ink lines' crown
+  // coverage is projected from; -1 = none (the outline follows the raster's coverage).
+  int surface_samples = -1;
 };
 
 // What a style adds to the graph: its final image (CV_8UC4 BGRA sRGB) and, for styles made of

@@ -157,6 +157,11 @@ Bounds Scene::bounds(Role role) const {
   return world_bounds(*this, [role](const Mesh& m, size_t t) { return m.roles[t] == role; });
 }
 
+Bounds Scene::bounds_except(Role role) const {
+  return world_bounds(
+      *this, [role](const Mesh& m, size_t t) { return t >= m.roles.size() || m.roles[t] != role; });
+}
+
 size_t Scene::drawn_triangle_count() const {
   if (!instanced()) return triangle_count();
   size_t n = 0;

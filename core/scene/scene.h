@@ -170,7 +170,8 @@ struct Scene {
 
   // World space: over every instance.
   Bounds bounds() const;
-  Bounds bounds(Role role) const;  // bounds of the triangles with this role
+  Bounds bounds(Role role) const;         // bounds of the triangles with this role
+  Bounds bounds_except(Role role) const;  // of every other triangle (and those with no role)
   // Centred on the bounds' centre, radius = farthest used vertex: never larger than the box's
   // circumscribed sphere and, for a tall tree, noticeably tighter. Ground triangles
   // (Role::Ground) are left out when there is anything else, so a ground plane (e.g.

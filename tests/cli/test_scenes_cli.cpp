@@ -143,7 +143,11 @@ double failing_share(const std::string& a, const std::string& b) {
 TEST(Park, RendersTheSamePixelsAsItsFlattenedTwin) {
   const std::string dir = temp_dir("park-twin");
   EXPECT_EQ(info_json(flattened_park())["instances"], 1);
-  for (const char* style : {"standard", "toon"}) {
+  // ink's outline also projects the scene's surface samples (npr/surface_samples.h), placed per
+  // instance in the park and read from the flat meshes in the twin. Styles by leaf cluster
+  // (pen's regions, watercolor's washes, blobs) are not compared: the park's clusters are made
+  // per plant, the twin's over the whole scene.
+  for (const char* style : {"standard", "toon", "ink"}) {
     for (const std::string& scene : {park(), flattened_park()}) {
       const std::string out = dir + "/" + style + (scene == park() ? "-park.png" : "-flat.png");
       const RunResult r = run_sylva("render " + scene + " --style " + style +
@@ -218,7 +222,12 @@ TEST(Lod, DistantPlantsChangeLittle) {
     const double share = ink ? moved_line_share(on, off) : changed_block_share(on, off, 16);
     std::printf("%s: %.4f\n", style, share);
     EXPECT_LE(share, 0.05) << style;
-    EXPECT_NE(read_file(on), read_file(off)) << style << ": the levels of detail were not used";
+    // ink's outline is the scene's surface samples projected (npr/surface_samples.h), not the
+    // drawn triangles, and the distant trees' wood lines are below its minimum length: the
+    // levels leave it unchanged, which is what this bound asks for.
+    if (!ink) {
+      EXPECT_NE(read_file(on), read_file(off)) << style << ": the levels of detail were not used";
+    }
   }
   expect_input_error("render " + park() + " --lod maybe --size 64 -o " + dir + "/x.png", "--lod");
 }
