@@ -32,7 +32,7 @@ double shortest(float f) {
 // What made the baked data, with every "auto" resolved, so a file documents itself. No
 // timings: the same inputs must give the same bytes.
 std::string baked_note(const FoliageParams& p, const FoliageStats& s) {
-  const nlohmann::json j = {
+  nlohmann::json j = {
       {"method", "Luft, Balzer & Deussen 2007: realigned normals, ka by Eq. 4"},
       {"leaves", s.leaves},
       {"generators", s.generators},
@@ -49,6 +49,15 @@ std::string baked_note(const FoliageParams& p, const FoliageStats& s) {
       {"smooth", p.optimize.smooth_iterations},
       {"decimate", p.optimize.keep_fraction},
       {"seed", p.seed}};
+  // A scene of many plants: what each plant resolved alone (the fields above: the first's).
+  for (const FoliageStats& plant : s.plants)
+    j["plants"].push_back({{"name", plant.plant},
+                           {"leaves", plant.leaves},
+                           {"generators", plant.generators},
+                           {"fraction", plant.fraction},
+                           {"rho", plant.rho},
+                           {"tau", shortest(float(plant.tau))},
+                           {"d_min", shortest(float(plant.d_min))}});
   return j.dump();
 }
 

@@ -70,7 +70,7 @@ Action add_compare_command(CLI::App& app) {
     for (const auto& s : built)
       list.push_back(s.get());
 
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
     RenderGraph graph;
     const SheetPlan plan = add_sheet_passes(graph, list, sheet_scene(*frame, run, o->scene.seed));
     if (!run.surface_out.empty() && plan.foliage_passes > 1)

@@ -1,4 +1,5 @@
-// sylva info SCENE [--json]: what the scene holds and what the loader decided.
+// sylva info SCENE [--json]: what the scene holds (triangles drawn and distinct, instances,
+// plants, cameras, ...) and what the loader decided.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -7,30 +8,81 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "core/scene/instances.h"
 
 namespace sylva::cli {
 
 namespace {
 
+// Per plant: name, meshes, stored triangles and instances (a flat scene: one, "scene").
+nlohmann::json describe_plants(const Scene& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (size_t p = 0; p < scene.plant_count(); ++p) {
+    size_t triangles = 0;
+    const std::vector<uint32_t> meshes = plant_meshes(scene, p);
+    for (uint32_t m : meshes)
+      triangles += scene.meshes[m].triangle_count();
+    out.push_back({{"name", scene.instanced() ? scene.plants[p].name : "scene"},
+                   {"meshes", meshes.size()},
+                   {"triangles", triangles},
+                   {"instances", plant_instances(scene, p).size()}});
+  }
+  return out;
+}
+
+nlohmann::json describe_cameras(const Scene& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const SceneCamera& c = scene.cameras[i];
+    const glm::vec3 eye(c.to_world[3]);
+    nlohmann::json j = {{"index", i},
+                        {"name", c.name},
+                        {"type", c.orthographic ? "orthographic" : "perspective"},
+                        {"eye", {eye.x, eye.y, eye.z}},
+                        {"znear", c.znear},
+                        {"zfar", c.zfar}};
+    if (c.orthographic) {
+      j["xmag"] = c.xmag;
+      j["ymag"] = c.ymag;
+    } else {
+      j["yfov_degrees"] = glm::degrees(c.yfov);
+    }
+    out.push_back(j);
+  }
+  return out;
+}
+
 nlohmann::json describe(const Scene& scene) {
   using nlohmann::json;
+  // Stored triangles by role; leaves and clusters of the distinct plants (each plant's ids
+  // are its own).
   size_t role_tris[kRoleCount] = {};
-  std::set<uint32_t> leaves, clusters;
-  for (const Mesh& m : scene.meshes)
-    for (size_t t = 0; t < m.triangle_count(); ++t) {
-      ++role_tris[static_cast<int>(m.roles[t])];
-      if (m.roles[t] == Role::Foliage) {
-        leaves.insert(m.primitive_ids[t]);
-        clusters.insert(m.cluster_ids[t]);
+  size_t leaf_count = 0, cluster_count = 0;
+  for (size_t p = 0; p < scene.plant_count(); ++p) {
+    std::set<uint32_t> leaves, clusters;
+    for (uint32_t mi : plant_meshes(scene, p)) {
+      const Mesh& m = scene.meshes[mi];
+      for (size_t t = 0; t < m.triangle_count(); ++t) {
+        ++role_tris[static_cast<int>(m.roles[t])];
+        if (m.roles[t] == Role::Foliage) {
+          leaves.insert(m.primitive_ids[t]);
+          clusters.insert(m.cluster_ids[t]);
+        }
       }
     }
+    leaf_count += leaves.size();
+    cluster_count += clusters.size();
+  }
   json j;
   j["source"] = scene.report.source;
-  j["triangles"] = scene.triangle_count();
+  j["triangles"] = scene.drawn_triangle_count();
+  j["distinct_triangles"] = scene.triangle_count();
+  j["instances"] = scene.instance_count();
+  j["plants"] = scene.plant_count();
   j["vertices"] = scene.vertex_count();
-  j["leaves"] = leaves.size();
-  j["clusters"] = clusters.size();
-  j["primitives"] = scene.max_primitive_id();
+  j["leaves"] = leaf_count;
+  j["clusters"] = cluster_count;
+  j["primitives"] = id_layout(scene).max_primitive;
   j["dropped_degenerate_triangles"] = scene.report.dropped_degenerate;
   json roles = json::object();
   for (int r = 0; r < kRoleCount; ++r)
@@ -59,15 +111,24 @@ nlohmann::json describe(const Scene& scene) {
                  {"max", {b.max.x, b.max.y, b.max.z}},
                  {"diagonal", b.diagonal()}};
   j["hierarchy_branches"] = scene.hierarchy.branch_parent.size();
+  j["plant_list"] = describe_plants(scene);
+  j["cameras"] = describe_cameras(scene);
   j["warnings"] = scene.report.warning_lines();
   return j;
 }
 
 void print_text(const nlohmann::json& j) {
   std::printf("source      %s\n", j["source"].get<std::string>().c_str());
-  std::printf("triangles   %zu (vertices %zu, degenerate dropped %zu)\n",
-              j["triangles"].get<size_t>(), j["vertices"].get<size_t>(),
-              j["dropped_degenerate_triangles"].get<size_t>());
+  std::printf("triangles   %zu drawn, %zu distinct (vertices %zu, degenerate dropped %zu)\n",
+              j["triangles"].get<size_t>(), j["distinct_triangles"].get<size_t>(),
+              j["vertices"].get<size_t>(), j["dropped_degenerate_triangles"].get<size_t>());
+  std::printf("plants      %zu distinct, %zu instances\n", j["plants"].get<size_t>(),
+              j["instances"].get<size_t>());
+  if (j["plants"].get<size_t>() > 1)
+    for (auto& p : j["plant_list"])
+      std::printf("plant       %s: %zu meshes, %zu triangles, %zu instances\n",
+                  p["name"].get<std::string>().c_str(), p["meshes"].get<size_t>(),
+                  p["triangles"].get<size_t>(), p["instances"].get<size_t>());
   std::printf("roles      ");
   for (auto& [k, v] : j["triangles_by_role"].items())
     std::printf(" %s %zu", k.c_str(), v.get<size_t>());
@@ -88,6 +149,16 @@ void print_text(const nlohmann::json& j) {
   std::printf("bounds      (%g, %g, %g) .. (%g, %g, %g), diagonal %g\n", b["min"][0].get<double>(),
               b["min"][1].get<double>(), b["min"][2].get<double>(), b["max"][0].get<double>(),
               b["max"][1].get<double>(), b["max"][2].get<double>(), b["diagonal"].get<double>());
+  for (auto& c : j["cameras"]) {
+    const bool ortho = c["type"] == "orthographic";
+    std::printf("camera      %zu '%s': %s, %s %g, eye (%g, %g, %g), znear %g, zfar %g%s\n",
+                c["index"].get<size_t>(), c["name"].get<std::string>().c_str(),
+                c["type"].get<std::string>().c_str(), ortho ? "ymag" : "yfov",
+                ortho ? c["ymag"].get<double>() : c["yfov_degrees"].get<double>(),
+                c["eye"][0].get<double>(), c["eye"][1].get<double>(), c["eye"][2].get<double>(),
+                c["znear"].get<double>(), c["zfar"].get<double>(),
+                !ortho && c["zfar"].get<double>() == 0.0 ? " (infinite)" : "");
+  }
   for (auto& w : j["warnings"])
     std::printf("warning     %s\n", w.get<std::string>().c_str());
 }
@@ -101,7 +172,9 @@ Action add_info_command(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Report triangles, leaves, clusters, roles, materials, bounds and what was detected");
+      "info",
+      "Report triangles (drawn and distinct), instances, plants, leaves, clusters, roles, "
+      "materials, bounds, cameras and what was detected");
   add_scene_options(*cmd, o->scene);
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
   return [o] {

@@ -128,7 +128,7 @@ Action add_render_command(CLI::App& app) {
     if (vector) require_line_style(*style, "--style");
     check_dpi(o->dpi, "--dpi");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
     RenderGraph graph;
     const SheetPlan plan =
         add_sheet_passes(graph, {style.get()}, sheet_scene(*frame, run, o->scene.seed), vector);
@@ -217,7 +217,7 @@ Action add_buffers_command(CLI::App& app) {
     const FoliageRun run = foliage_run(o->foliage);
     const NormalMode mode =
         normals->count() > 0 ? parse_normal_mode(o->normals, "--normals") : style->normals();
-    auto frame = prepare_frame(o->scene, o->view);
+    auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
     frame->setup.request.flat_albedo =
         style->params().albedo == AlbedoSource::Flat;  // ids follow --id
     // With the style's picture-scale rho (ink.detail), as its render would use.

@@ -24,6 +24,7 @@
 #include "core/io/atomic_file.h"
 #include "core/io/image_io.h"
 #include "core/progress.h"
+#include "core/scene/instances.h"
 #include "studies/foliage_study.h"
 
 namespace sylva::cli {
@@ -249,7 +250,8 @@ Action add_tradeoff_command(CLI::App& app) {
       throw InputError("--" + e.where(), e.reason());
     }
 
-    const Scene scene = load_scene_for_cli(o->scene);
+    // The study times one preprocessing of the whole scene: an instanced one is flattened.
+    const Scene scene = flatten(load_scene_for_cli(o->scene));
     FoliageStudy study;
     {
       ProgressOptions po;

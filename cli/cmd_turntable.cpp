@@ -73,7 +73,7 @@ void fill_keyframe_cache(TurntableRenderer& renderer, const TurntableOptions& o,
 void run_turntable(const CLI::App& cmd, TurntableOptions& o) {
   const TurntableChecks c = check_turntable_options(cmd, o);
   const Style& style = *c.style;
-  auto frame = prepare_frame(o.scene, o.view);
+  auto frame = prepare_frame(o.scene, o.view, result_cache_dir(o.foliage));
   SheetScene scene = sheet_scene(*frame, foliage_run(o.foliage), o.scene.seed);
   memoize_preprocessing(scene, o.quiet);
   const Camera base = frame->setup.camera;

@@ -1,11 +1,13 @@
 #include "cli/common_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/gl/depth_range.h"
 #include "core/scene/ground_plane.h"
 #include "core/scene/load.h"
 #include "npr/leaf_clusters.h"
@@ -79,6 +81,13 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
                "occlusion and hides part of the sky of the wood above it")
       ->group(kViewGroup);
   add("--ground-color", o.ground_color, "Colour of the --ground plane, #RRGGBB (sRGB)");
+  add("--lod", o.lod,
+      "Levels of detail for a scene of many plants: on draws each instance with a simplified "
+      "mesh when it covers few pixels; off draws every one whole");
+  add("--camera", o.camera,
+      "A camera of the file by name or index (sylva info lists them): its place, field of view "
+      "or orthographic extent and clipping planes, the image's aspect; --azimuth, --elevation, "
+      "--distance, --fov and --ortho then do not apply");
   cmd.add_option("--light", o.lights,
                  "A light, repeatable up to 8, replacing the default three-light set-up (key, "
                  "fill and rim, fixed to the camera): dir|point:X,Y,Z[:INTENSITY[:camera|scene]] "
@@ -170,10 +179,41 @@ void resolve_view_options(ViewOptions& o) {
   if (o.lights.size() > 8) throw InputError("--light", "at most 8 lights");
   for (const std::string& l : o.lights)
     parse_light(l);
+  if (o.lod != "on" && o.lod != "off")
+    throw InputError("--lod", "expected on or off, got '" + o.lod + "'");
   if (o.id_kind != "primitive" && o.id_kind != "cluster" && o.id_kind != "object" &&
       o.id_kind != "material")
     throw InputError("--id",
                      "expected primitive, cluster, object or material, got '" + o.id_kind + "'");
+}
+
+const SceneCamera& find_file_camera(const Scene& scene, const std::string& text) {
+  std::string names;
+  for (size_t i = 0; i < scene.cameras.size(); ++i)
+    names += (i ? ", " : "") + std::to_string(i) + " '" + scene.cameras[i].name + "' (" +
+             (scene.cameras[i].orthographic ? "orthographic" : "perspective") + ")";
+  const std::string listing =
+      scene.cameras.empty() ? "the file has no cameras" : "the file's cameras: " + names;
+  const bool digits =
+      !text.empty() && text.size() < 10 &&
+      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (digits) {
+    const size_t i = std::stoul(text);
+    if (i < scene.cameras.size()) return scene.cameras[i];
+    throw InputError("--camera", "index " + text + " is out of range; " + listing);
+  }
+  for (const SceneCamera& c : scene.cameras)
+    if (c.name == text) return c;
+  throw InputError("--camera", "no camera named '" + text + "'; " + listing);
+}
+
+Camera view_camera(const Scene& scene, const ViewOptions& o) {
+  if (!o.camera.empty())
+    return make_file_camera(find_file_camera(scene, o.camera), scene.framing_sphere(), o.width,
+                            o.height);
+  Camera camera = make_orbit_camera(scene.framing_sphere(), o.orbit, o.width, o.height);
+  fit_camera_depth(camera, scene);
+  return camera;
 }
 
 void apply_ground_option(Scene& scene, const ViewOptions& o) {

@@ -45,12 +45,24 @@ struct ViewOptions {
   // --ground-color: "#RRGGBB" (sRGB, as --background) of the ground plane; a neutral light
   // grey by default.
   std::string ground_color = "#b4b4ac";
+  // --lod on|off: levels of detail for the instances of a scene of many plants.
+  std::string lod = "on";
+  // --camera NAME|INDEX: a camera of the file (Scene::cameras, `sylva info` lists them) in
+  // place of the orbit camera; empty = the orbit camera.
+  std::string camera;
   int width = 0, height = 0;  // parsed from size
 };
 void add_view_options(CLI::App& cmd, ViewOptions& o);
 // Parses and range-checks the view options (size, ssaa, background, ambient, id kind,
 // ground colour).
 void resolve_view_options(ViewOptions& o);
+// The view's camera: the file's camera named by --camera (make_file_camera), else the orbit
+// camera framing the scene with its depth range fitted to the whole scene. Throws
+// InputError("--camera", ...) naming the file's cameras when none matches.
+Camera view_camera(const Scene& scene, const ViewOptions& o);
+// The file camera `name_or_index` names: an index in [0, cameras) or a name (exact).
+const SceneCamera& find_file_camera(const Scene& scene, const std::string& name_or_index);
+
 // Adds the ground plane to the loaded scene when --ground is given.
 void apply_ground_option(Scene& scene, const ViewOptions& o);
 RasterRequest raster_request(const ViewOptions& o);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/scene/instances.h"
 
 namespace sylva::cli {
 
@@ -23,11 +24,25 @@ std::vector<std::string> parse_cryptomatte_list(const std::string& list) {
 
 namespace {
 
+std::string mesh_name(const Scene& scene, size_t i) {
+  return scene.meshes[i].name.empty() ? "mesh_" + std::to_string(i) : scene.meshes[i].name;
+}
+
+// Object ids in id order (core/scene/instances.h): a flat scene's meshes; an instanced
+// scene's instances, each with its plant's meshes, named "<instance>/<mesh>".
 std::vector<std::string> object_names(const Scene& scene) {
   std::vector<std::string> names;
-  for (size_t i = 0; i < scene.meshes.size(); ++i)
-    names.push_back(scene.meshes[i].name.empty() ? "mesh_" + std::to_string(i)
-                                                 : scene.meshes[i].name);
+  if (!scene.instanced()) {
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+      names.push_back(mesh_name(scene, i));
+    return names;
+  }
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    const std::string prefix = inst.name.empty() ? "instance_" + std::to_string(i) : inst.name;
+    for (uint32_t m : scene.plants[inst.plant].meshes)
+      names.push_back(prefix + "/" + mesh_name(scene, m));
+  }
   return names;
 }
 
@@ -42,10 +57,7 @@ std::vector<std::string> material_names(const Scene& scene) {
 }
 
 std::vector<std::string> cluster_names(const Scene& scene) {
-  uint32_t most = 0;
-  for (const Mesh& m : scene.meshes)
-    for (uint32_t id : m.cluster_ids)
-      most = std::max(most, id);
+  const uint32_t most = id_layout(scene).max_cluster;
   std::vector<std::string> names;
   for (uint32_t id = 1; id <= most; ++id)
     names.push_back("cluster_" + std::to_string(id));

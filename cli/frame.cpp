@@ -5,23 +5,27 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/gl/depth_range.h"
+#include "npr/plant_lod.h"
 #include "styles/presets.h"
 
 namespace fs = std::filesystem;
 
 namespace sylva::cli {
 
-std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo) {
+std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo,
+                                     const std::string& cache_dir) {
   resolve_view_options(vo);
   auto f = std::make_unique<Frame>();
   f->scene = load_scene_for_cli(so);
   apply_ground_option(f->scene, vo);
-  f->setup.camera = make_orbit_camera(f->scene.framing_sphere(), vo.orbit, vo.width, vo.height);
-  fit_camera_depth(f->setup.camera, f->scene);
+  f->setup.camera = view_camera(f->scene, vo);
   f->context = create_gl_context();
   f->rasterizer = std::make_unique<Rasterizer>(*f->context);
   f->rasterizer->upload(f->scene);
+  if (vo.lod == "on" && f->scene.instanced()) {
+    const ResultCache cache(cache_dir);
+    f->rasterizer->set_lod(f->scene, scene_lods(f->scene, cache_dir.empty() ? nullptr : &cache));
+  }
   f->setup.rasterizer = f->rasterizer.get();
   f->setup.lighting = lighting_for(vo);
   f->setup.request = raster_request(vo);

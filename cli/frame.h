@@ -10,6 +10,7 @@
 
 #include "cli/common_options.h"
 #include "cli/illumination_options.h"
+#include "core/cache/result_cache.h"
 #include "core/gl/raster_pass.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
@@ -25,8 +26,11 @@ struct Frame {
   RasterSetup setup;
 };
 
-// Resolves the view options, loads the scene and uploads it.
-std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo);
+// Resolves the view options, loads the scene and uploads it, with its plants' levels of
+// detail (npr/plant_lod.h) unless --lod off, read from or stored in the result cache folder
+// `cache_dir` ("" = none).
+std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo,
+                                     const std::string& cache_dir = default_cache_dir());
 // The graph's results are plain images: drop the scene, the GL objects and the context
 // before encoding files, and hand freed heap back, so peak memory is not their sum.
 void release_frame(std::unique_ptr<Frame>& frame);

@@ -33,4 +33,8 @@ void apply_foliage_options(const CLI::App& cmd, ParamSet& set);
 // one-line report of each preprocessing on stderr unless `quiet`.
 FoliageRun foliage_run(const FoliageRunOptions& o, bool quiet = false);
 
+// The result cache folder of --cache-dir / --no-cache: "" with --no-cache, else --cache-dir,
+// else default_cache_dir().
+std::string result_cache_dir(const FoliageRunOptions& o);
+
 }  // namespace sylva::cli

@@ -7,8 +7,8 @@
 
 #include "cli/commands.h"
 #include "cli/tradeoff.h"
-#include "core/gl/depth_range.h"
 #include "core/progress.h"
+#include "core/scene/instances.h"
 #include "studies/ao_study.h"
 
 namespace sylva::cli {
@@ -84,10 +84,11 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
     throw InputError(where, e.reason());
   }
 
-  Scene scene = load_scene_for_cli(scene_options);
+  // The ray-traced reference and the fits see world-space triangles: an instanced scene is
+  // flattened.
+  Scene scene = flatten(load_scene_for_cli(scene_options));
   apply_ground_option(scene, o.view);
-  so.camera = make_orbit_camera(scene.framing_sphere(), o.view.orbit, o.view.width, o.view.height);
-  fit_camera_depth(so.camera, scene);
+  so.camera = view_camera(scene, o.view);
   so.lighting = lighting_for(o.view);
   so.request = raster_request(o.view);
   AoStudy study;

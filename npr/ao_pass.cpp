@@ -6,6 +6,9 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/scene/instances.h"
+#include "core/scene/texture_alpha.h"
+#include "npr/ao_plants.h"
 #include "npr/ao_reference.h"
 #include "npr/ao_uniforms.h"
 
@@ -90,7 +93,10 @@ AoShading::Model ao_model_of(AoModel model) {
   throw InputError("ao.model", "holds none of the models");
 }
 
-AoReferenceScene make_scene_tracer(const Scene& scene) {
+AoReferenceScene make_scene_tracer(const Scene& input) {
+  // Embree traces world-space triangles: an instanced scene is flattened.
+  const Scene flat = input.instanced() ? flatten(input) : Scene{};
+  const Scene& scene = input.instanced() ? flat : input;
   std::vector<glm::vec3> positions;
   std::vector<glm::vec2> uvs;
   std::vector<uint32_t> indices;
@@ -107,32 +113,20 @@ AoReferenceScene make_scene_tracer(const Scene& scene) {
     for (uint32_t i : m.indices)
       indices.push_back(base + i);
     int cutout = -1;
-    if (m.material >= 0 && size_t(m.material) < scene.materials.size()) {
-      const Material& mat = scene.materials[size_t(m.material)];
-      if (mat.alpha_mode != AlphaMode::Opaque && mat.base_color_texture >= 0 &&
-          size_t(mat.base_color_texture) < scene.textures.size())
-        cutout = m.material;
-    }
+    if (m.material >= 0 && size_t(m.material) < scene.materials.size() &&
+        is_cutout(scene, scene.materials[size_t(m.material)]))
+      cutout = m.material;
     any_cutout = any_cutout || cutout >= 0;
     triangle_material.insert(triangle_material.end(), m.triangle_count(), cutout);
   }
   if (!any_cutout) return AoReferenceScene(positions, indices);
-  const Scene* s = &scene;
+  const Scene* s = &input;  // materials and textures: the same in the flattened scene
   auto materials = std::make_shared<const std::vector<int>>(std::move(triangle_material));
   auto alpha = [s, materials](uint32_t triangle, glm::vec2 uv) -> float {
-    const Material& mat = s->materials[size_t((*materials)[triangle])];
-    const Texture& t = s->textures[size_t(mat.base_color_texture)];
-    if (t.width <= 0 || t.height <= 0) return 1.0f;
-    const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
-    const int x = std::clamp(int(u * float(t.width)), 0, t.width - 1);
-    const int y = std::clamp(int(v * float(t.height)), 0, t.height - 1);
-    const size_t at = 4 * (size_t(y) * size_t(t.width) + size_t(x)) + 3;
-    const float a = at < t.rgba.size() ? t.rgba[at] / 255.0f : 1.0f;
-    const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
-    return a * mat.base_color.a >= cutoff ? 1.0f : 0.0f;
+    return drawn_at(*s, s->materials[size_t((*materials)[triangle])], uv) ? 1.0f : 0.0f;
   };
-  auto is_cutout = [materials](uint32_t triangle) { return (*materials)[triangle] >= 0; };
-  AoHitFilter filter = make_alpha_cutout_filter(uvs, indices, alpha, 0.5f, is_cutout);
+  auto cutout_triangle = [materials](uint32_t triangle) { return (*materials)[triangle] >= 0; };
+  AoHitFilter filter = make_alpha_cutout_filter(uvs, indices, alpha, 0.5f, cutout_triangle);
   return AoReferenceScene(positions, indices, std::move(filter));
 }
 
@@ -153,6 +147,7 @@ std::vector<glm::vec3> foliage_vertices(const Scene& scene) {
 }
 
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& s, uint64_t seed) {
+  if (scene.instanced()) return plants_ao_shading(scene, s, seed);
   AoShading ao;
   ao.model = ao_model_of(s.model);
   ao.constant = s.constant;

@@ -100,7 +100,8 @@ struct AoSetup {
 // its roots at their lowest y and the height of their extent in y. Flat ground (Role::Ground
 // triangles all at one y, within 1e-6 of their extent) is the ground plane that also darkens
 // wood and other geometry (AoShading::ground_plane). A scene with grass but no foliage gets
-// no shells and no crown (grass by Eq. 9 alone). Throws
+// no shells and no crown (grass by Eq. 9 alone). A scene of many plants gets each plant's
+// shells and every instance's crown (npr/ao_plants.h). Throws
 // InputError("ao.model", ...) for hegeman-* on a scene with neither foliage nor grass.
 AoShading scene_ao_shading(const Scene& scene, const AoSettings& settings, uint64_t seed);
 

@@ -84,6 +84,25 @@ std::vector<BlobOutline> find_blob_outlines(const cv::Mat& id, const cv::Mat& de
   return out;
 }
 
+BlobOutline blob_outline(const cv::Mat& mask, const cv::Rect& box, uint32_t cluster, float depth,
+                         const ShrinkWrapParams& params, float gap_radius) {
+  SYLVA_CHECK(mask.type() == CV_8UC1 && mask.size() == box.size(),
+              "blob_outline: a CV_8UC1 mask of the box's size");
+  const int grow = gap_radius > 0 ? static_cast<int>(std::ceil(gap_radius)) : 0;
+  cv::Mat padded;
+  cv::copyMakeBorder(mask, padded, grow, grow, grow, grow, cv::BORDER_CONSTANT, 0);
+  BlobOutline b;
+  b.cluster = cluster;
+  b.wrap = shrink_wrap(close_gaps(padded, gap_radius), params);
+  const glm::vec2 offset(static_cast<float>(box.x - grow), static_cast<float>(box.y - grow));
+  b.wrap.center += offset;
+  for (glm::vec2& p : b.wrap.points)
+    p += offset;
+  b.min_depth = depth;
+  b.pixels = cv::countNonZero(mask);
+  return b;
+}
+
 std::vector<size_t> painter_order(const std::vector<BlobOutline>& blobs) {
   std::vector<size_t> order(blobs.size());
   std::iota(order.begin(), order.end(), size_t{0});

@@ -44,6 +44,12 @@ std::vector<BlobOutline> find_blob_outlines(const cv::Mat& id, const cv::Mat& de
                                             uint32_t exclude, const ShrinkWrapParams& params,
                                             float gap_radius = 0);
 
+// One blob from a cluster's pixels: `mask` (CV_8UC1, non-zero = the cluster) covering `box` of
+// the image, closed by `gap_radius` px (the mask padded first, so gaps at its edge close too)
+// and shrink-wrapped, in image px; min_depth = `depth`, pixels = the mask's count.
+BlobOutline blob_outline(const cv::Mat& mask, const cv::Rect& box, uint32_t cluster, float depth,
+                         const ShrinkWrapParams& params, float gap_radius);
+
 // Painter's order (Dudley §4.3): indices of `blobs` from the farthest min_depth to the nearest;
 // ties by cluster id, so the order is total and deterministic.
 std::vector<size_t> painter_order(const std::vector<BlobOutline>& blobs);

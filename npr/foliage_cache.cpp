@@ -109,12 +109,11 @@ bool deserialize_foliage(const std::string& payload, const Scene& scene, Foliage
   return true;
 }
 
-FoliageIllumination cached_foliage_illumination(const Scene& scene, const FoliageParams& params,
-                                                const ResultCache* cache, FoliageCacheUse* use) {
-  FoliageCacheUse local;
-  FoliageCacheUse& u = use ? *use : local;
-  u = {};
-  if (!cache) return compute_foliage_illumination(scene, params);
+namespace {
+
+// One flat scene (or plant) through the cache.
+FoliageIllumination cached_one(const Scene& scene, const FoliageParams& params,
+                               const ResultCache* cache, FoliageCacheUse& u) {
   validate_foliage_params(params);
   const std::string key = foliage_cache_key(scene, params);
   if (std::optional<std::string> bytes = cache->load(kKind, key)) {
@@ -128,6 +127,27 @@ FoliageIllumination cached_foliage_illumination(const Scene& scene, const Foliag
   FoliageIllumination r = compute_foliage_illumination(scene, params);
   if (!cache->store(kKind, key, serialize_foliage(r), &u.warning) && u.warning.empty())
     u.warning = "cannot write the cache";
+  return r;
+}
+
+}  // namespace
+
+FoliageIllumination cached_foliage_illumination(const Scene& scene, const FoliageParams& params,
+                                                const ResultCache* cache, FoliageCacheUse* use) {
+  FoliageCacheUse local;
+  FoliageCacheUse& u = use ? *use : local;
+  u = {};
+  if (!cache) return compute_foliage_illumination(scene, params);
+  validate_foliage_params(params);
+  bool all_hit = true;
+  FoliageIllumination r = foliage_per_plant(scene, [&](const Scene& plant) {
+    FoliageCacheUse one;
+    FoliageIllumination out = cached_one(plant, params, cache, one);
+    all_hit = all_hit && one.hit;
+    if (u.warning.empty()) u.warning = one.warning;
+    return out;
+  });
+  u.hit = all_hit;
   return r;
 }
 

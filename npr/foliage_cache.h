@@ -27,7 +27,9 @@ struct FoliageCacheUse {
 };
 
 // compute_foliage_illumination through `cache` (nullptr: always compute). A hit sets
-// stats.from_cache; its timings are those of the run that computed it.
+// stats.from_cache; its timings are those of the run that computed it. An instanced scene
+// has an entry per plant (keyed by the plant alone, so the same plant in another scene hits
+// it); `use->hit` then says every plant was read from the cache.
 FoliageIllumination cached_foliage_illumination(const Scene& scene, const FoliageParams& params,
                                                 const ResultCache* cache,
                                                 FoliageCacheUse* use = nullptr);

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/scene/instances.h"
 #include "core/scene/load.h"
 #include "npr/density_field.h"
 #include "npr/generators.h"
@@ -256,8 +257,80 @@ void validate_foliage_params(const FoliageParams& p) {
   validate_ambient(p.ambient);
 }
 
+namespace {
+
+// A plant without foliage: its own unit normals, ka 1 (Eq. 4 at density 0).
+FoliageIllumination unshaded(const Scene& plant) {
+  FoliageIllumination out;
+  for (const Mesh& mesh : plant.meshes) {
+    Mesh m = mesh.normals.empty() ? mesh : Mesh{};
+    if (!m.positions.empty()) compute_vertex_normals(m);
+    const std::vector<glm::vec3>& own = mesh.normals.empty() ? m.normals : mesh.normals;
+    std::vector<glm::vec3> n(own.size());
+    for (size_t v = 0; v < n.size(); ++v)
+      n[v] = unit_or(own[v], glm::vec3(0, 0, 1));
+    out.normals.push_back(std::move(n));
+    out.ka.emplace_back(mesh.positions.size(), 1.0f);
+  }
+  return out;
+}
+
+// The first plant with foliage gives rho, tau, fraction, d_min and F; counts and timings add.
+void merge_stats(FoliageStats& st, const FoliageStats& r, bool first) {
+  if (first) {
+    std::vector<FoliageStats> plants = std::move(st.plants);
+    st = r;
+    st.plant.clear();
+    st.plants = std::move(plants);
+    return;
+  }
+  st.leaves += r.leaves;
+  st.generators += r.generators;
+  st.surface_triangles += r.surface_triangles;
+  st.seconds_field += r.seconds_field;
+  st.seconds_surface += r.seconds_surface;
+  st.seconds_shading += r.seconds_shading;
+  st.from_cache = st.from_cache && r.from_cache;
+}
+
+// Plant p's result into the scene's per-mesh arrays and the merged stats.
+void merge_plant(const Scene& scene, size_t p, FoliageIllumination&& r, bool shaded, bool first,
+                 FoliageIllumination& out) {
+  const std::vector<uint32_t>& meshes = scene.plants[p].meshes;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    out.normals[meshes[k]] = std::move(r.normals[k]);
+    out.ka[meshes[k]] = std::move(r.ka[k]);
+  }
+  out.plant_surfaces.push_back(std::move(r.surface));
+  r.stats.plant = scene.plants[p].name;
+  if (shaded) merge_stats(out.stats, r.stats, first);
+  out.stats.plants.push_back(std::move(r.stats));
+}
+
+}  // namespace
+
+FoliageIllumination foliage_per_plant(const Scene& scene,
+                                      const std::function<FoliageIllumination(const Scene&)>& one) {
+  if (!scene.instanced()) return one(scene);
+  FoliageIllumination out;
+  out.normals.resize(scene.meshes.size());
+  out.ka.resize(scene.meshes.size());
+  bool any = false;
+  for (size_t p = 0; p < scene.plants.size(); ++p) {
+    const Scene plant = plant_scene(scene, p, false);
+    const bool shaded = !plant.bounds(Role::Foliage).empty();
+    merge_plant(scene, p, shaded ? one(plant) : unshaded(plant), shaded, shaded && !any, out);
+    any = any || shaded;
+  }
+  if (!any) check_scene(scene);  // throws: no foliage anywhere
+  return out;
+}
+
 FoliageIllumination compute_foliage_illumination(const Scene& scene, const FoliageParams& p) {
   validate_foliage_params(p);
+  if (scene.instanced())
+    return foliage_per_plant(
+        scene, [&p](const Scene& plant) { return compute_foliage_illumination(plant, p); });
   check_scene(scene);
   const Bounds fb = scene.bounds(Role::Foliage);
   FoliageIllumination out;
@@ -312,6 +385,12 @@ VertexShading vertex_shading(const FoliageIllumination& r, KaEncoding encoding) 
 }
 
 std::string describe(const FoliageStats& s) {
+  if (!s.plants.empty()) {
+    std::string out = std::to_string(s.plants.size()) + " plants";
+    for (const FoliageStats& p : s.plants)
+      out += "; " + p.plant + ": " + describe(p);
+    return out;
+  }
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "%zu leaves, %zu generators (fraction %.3g), rho %.4g, tau %.4g, d_min %.4g, "

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +63,10 @@ struct FoliageStats {
   size_t surface_triangles = 0;
   double seconds_field = 0, seconds_surface = 0, seconds_shading = 0;
   bool from_cache = false;  // read from the result cache (timings are the computing run's)
+  // An instanced scene: each plant's own (leaves, generators, surface triangles and timings
+  // above are their sums; rho, tau, d_min and F those of the first plant with foliage).
+  std::string plant;  // the plant's name (in `plants`)
+  std::vector<FoliageStats> plants;
 };
 
 struct FoliageIllumination {
@@ -69,14 +74,26 @@ struct FoliageIllumination {
   // elsewhere; computed when a mesh has none) and ka in [ka_min, 1].
   std::vector<std::vector<glm::vec3>> normals;
   std::vector<std::vector<float>> ka;
-  SurfaceMesh surface;  // empty with NormalSource::Gradient
+  SurfaceMesh surface;  // empty with NormalSource::Gradient, and for an instanced scene
+  // An instanced scene: each plant's surface in plant space (empty for a plant without
+  // foliage and with NormalSource::Gradient).
+  std::vector<SurfaceMesh> plant_surfaces;
   FoliageStats stats;
 };
 
 // Needs roles and primitive ids (finish_scene). Throws InputError when the scene has no
 // foliage, or when tau leaves no surface ("tau 12 is above every density; F + tau spans
-// [0, 9.5] with rho 0.4"). Deterministic.
+// [0, 9.5] with rho 0.4"). Deterministic. An instanced scene runs once per plant in plant
+// space (relative parameters relative to that plant); a plant without foliage keeps its
+// own unit normals with ka 1 (no density reaches it).
 FoliageIllumination compute_foliage_illumination(const Scene& scene, const FoliageParams& params);
+
+// For an instanced scene, `one` run on each plant with foliage as a scene of its own
+// (plant_scene, plant space) and the results merged per scene mesh; a plant without
+// foliage keeps its own unit normals with ka 1. A flat scene: one(scene). Throws
+// InputError("scene", ...) when no plant has foliage.
+FoliageIllumination foliage_per_plant(const Scene& scene,
+                                      const std::function<FoliageIllumination(const Scene&)>& one);
 
 // The renderer's input for an encoding: Length puts ka in |N| (floored at kKaFloor);
 // Attribute keeps unit normals and passes ka separately.

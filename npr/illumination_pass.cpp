@@ -43,14 +43,34 @@ IlluminationSetup foliage_setup(const FoliageSettings& settings, const FoliageRu
 
 namespace {
 
-void write_surface(const SurfaceMesh& surface, const std::string& path) {
-  Scene s;
+Mesh surface_mesh(const SurfaceMesh& surface, const std::string& name) {
   Mesh m;
-  m.name = "implicit_surface";
+  m.name = name;
   m.positions = surface.positions;
   m.normals = surface.normals;
   m.indices = surface.indices;
-  s.meshes.push_back(std::move(m));
+  return m;
+}
+
+// The implicit surface as a .glb; in a scene of many plants each plant's surface in its own
+// space, placed by its plant's instances (plants without a surface left out).
+void write_surface(const FoliageIllumination& r, const Scene& scene, const std::string& path) {
+  Scene s;
+  if (!scene.instanced()) {
+    s.meshes.push_back(surface_mesh(r.surface, "implicit_surface"));
+  } else {
+    std::vector<int> plant_of(scene.plants.size(), -1);
+    for (size_t p = 0; p < r.plant_surfaces.size() && p < scene.plants.size(); ++p) {
+      if (r.plant_surfaces[p].indices.empty()) continue;
+      const std::string name = "implicit_surface " + scene.plants[p].name;
+      s.plants.push_back({name, {uint32_t(s.meshes.size())}, {}});
+      s.meshes.push_back(surface_mesh(r.plant_surfaces[p], name));
+      plant_of[p] = int(s.plants.size() - 1);
+    }
+    for (const Instance& inst : scene.instances)
+      if (plant_of[inst.plant] >= 0)
+        s.instances.push_back({uint32_t(plant_of[inst.plant]), inst.transform, inst.name});
+  }
   LoadOptions none;
   none.foliage = "none";
   finish_scene(s, none);
@@ -80,7 +100,7 @@ int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup) {
       if (name == setup.parameter_names.end()) throw;
       throw InputError(name->second, e.reason());
     }
-    if (!setup.surface_out.empty()) write_surface(r.surface, setup.surface_out);
+    if (!setup.surface_out.empty()) write_surface(r, *setup.scene, setup.surface_out);
     if (setup.on_done) setup.on_done(r.stats);
     auto shading = std::make_shared<const VertexShading>(vertex_shading(r, setup.encoding));
     if (setup.memo) *setup.memo = shading;

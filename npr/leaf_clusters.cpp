@@ -8,6 +8,7 @@
 
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/scene/instances.h"
 #include "core/scene/load.h"
 
 namespace sylva {
@@ -149,18 +150,8 @@ size_t default_cluster_count(size_t leaves) {
   return std::clamp<size_t>(size_t(std::lround(std::sqrt(double(leaves) / 2.0))), 1, 64);
 }
 
-}  // namespace
-
-void assign_clusters(Scene& scene, const ClusterOptions& options) {
-  if (options.clusters < 0 || options.clusters > 4096)
-    throw InputError("--clusters", "must be in [0, 4096], got " + std::to_string(options.clusters));
-  if (!std::isfinite(options.division_diameter) || options.division_diameter < 0.0f)
-    throw InputError("--division-diameter", "must be a finite value >= 0 (scene units)");
-  for (const Mesh& mesh : scene.meshes)
-    SYLVA_CHECK(mesh.roles.size() == mesh.triangle_count() &&
-                    mesh.primitive_ids.size() == mesh.triangle_count(),
-                "assign_clusters needs roles and primitive ids (finish_scene)");
-
+// The clusters of a flat scene (or one plant's).
+void assign_plant_clusters(Scene& scene, const ClusterOptions& options) {
   const Leaves leaves = find_leaves(scene);
   const Hierarchy& h = scene.hierarchy;
   std::vector<int32_t> labels;
@@ -208,6 +199,38 @@ void assign_clusters(Scene& scene, const ClusterOptions& options) {
           mesh.roles[t] == Role::Foliage && l >= 0 ? leaf_cluster[size_t(l)] : clusters + 1;
     }
   }
+}
+
+}  // namespace
+
+void assign_clusters(Scene& scene, const ClusterOptions& options) {
+  if (options.clusters < 0 || options.clusters > 4096)
+    throw InputError("--clusters", "must be in [0, 4096], got " + std::to_string(options.clusters));
+  if (!std::isfinite(options.division_diameter) || options.division_diameter < 0.0f)
+    throw InputError("--division-diameter", "must be a finite value >= 0 (scene units)");
+  for (const Mesh& mesh : scene.meshes)
+    SYLVA_CHECK(mesh.roles.size() == mesh.triangle_count() &&
+                    mesh.primitive_ids.size() == mesh.triangle_count(),
+                "assign_clusters needs roles and primitive ids (finish_scene)");
+  if (!scene.instanced()) {
+    assign_plant_clusters(scene, options);
+    return;
+  }
+  // Each plant alone, in its own space, as it would be clustered alone.
+  std::vector<std::string> methods;
+  for (size_t p = 0; p < scene.plants.size(); ++p) {
+    Scene plant = plant_scene(scene, p, false);
+    assign_plant_clusters(plant, options);
+    const std::vector<uint32_t>& meshes = scene.plants[p].meshes;
+    for (size_t k = 0; k < meshes.size(); ++k)
+      scene.meshes[meshes[k]].cluster_ids = std::move(plant.meshes[k].cluster_ids);
+    for (const std::string& w : plant.report.warnings)
+      scene.report.warn("clusters", "plant '" + scene.plants[p].name + "': " + w);
+    methods.push_back(scene.plants[p].name + ": " + plant.report.cluster_method);
+  }
+  scene.report.cluster_method.clear();
+  for (const std::string& m : methods)
+    scene.report.cluster_method += (scene.report.cluster_method.empty() ? "" : "; ") + m;
 }
 
 }  // namespace sylva

@@ -59,13 +59,23 @@ ShrinkWrap shrink_wrap(const cv::Mat& mask, const ShrinkWrapParams& params) {
   for (int i = 0; i < n; ++i) {
     const double a = 2.0 * M_PI * i / n;
     // Clockwise on screen (y down) from straight up.
-    glm::vec2 p = c + out.radius * glm::vec2(std::sin(a), -std::cos(a));
+    glm::vec2 p = c + out.radius * glm::vec2(std::sin(a), -std::cos(a)), before = p;
+    bool landed = true;
     while (!on_mask(p)) {
       if (glm::length(p - c) < 0.5f) {
         p = nearest;
+        landed = false;
         break;
       }
+      before = p;
       p += params.step * (c - p);  // Dudley: 20 % of the way to the centre, repeated
+    }
+    // Back toward where it came from, to the mask's edge on the way (bisection to 1/64 of the
+    // step): the point then moves with the edge as the cluster's pixels change, instead of by
+    // whole steps.
+    for (int k = 0; landed && k < 6; ++k) {
+      const glm::vec2 mid = 0.5f * (before + p);
+      (on_mask(mid) ? p : before) = mid;
     }
     out.points.push_back(p);
   }

@@ -1,7 +1,10 @@
 // Shrink-wrapping a leaf cluster in image space (Dudley 2005 §4.2.1): N control points on a
 // circle around the cluster's pixels are each moved a fixed fraction of the way toward the
-// cluster's centre, again and again, until they land on one of its pixels. A closed cubic
-// B-spline through them (npr/bspline.h) is the blob's outline.
+// cluster's centre, again and again, until they land on one of its pixels; then back toward
+// where they came from, to the edge of the cluster's pixels on the way (bisection), so a point
+// moves with the edge when the pixels change a little rather than by whole steps (issue
+// "Temporal coherence"). A closed cubic B-spline through them (npr/bspline.h) is the blob's
+// outline.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -33,9 +36,9 @@ struct ShrinkWrap {
 };
 
 // Shrink-wraps the non-zero pixels of `mask` (CV_8UC1). Every returned point lies in a mask
-// pixel: a point that reaches the centre (within half a pixel) without meeting one is placed on
-// the cluster pixel nearest the centre (a ring-shaped cluster's centre is not on a leaf).
-// An all-zero mask gives an empty result.
+// pixel, within 1/64 of its last step of the pixel's edge it crossed: a point that reaches the
+// centre (within half a pixel) without meeting one is placed on the cluster pixel nearest the
+// centre (a ring-shaped cluster's centre is not on a leaf). An all-zero mask gives an empty result.
 ShrinkWrap shrink_wrap(const cv::Mat& mask, const ShrinkWrapParams& params);
 
 }  // namespace sylva

@@ -1,9 +1,11 @@
 // The blobs passes' parameters (blobs.* keys, ranges, checks) and their wiring into the render
 // graph (passes/blobs.h); the painting itself is passes/blobs.cpp.
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 #include "passes/blobs.h"
+#include "passes/crown_coverage.h"
 #include "passes/pass_common.h"
 
 namespace sylva {
@@ -16,8 +18,9 @@ void bind_blob_params(ParamSet& set, BlobParams& p) {
                 true);
   set.add_float("blobs.gap", p.gap, 0.0, 128.0, "px at 1024 px",
                 "gaps between a cluster's leaves closed before shrink-wrapping; 0 = none");
-  set.add_choice("blobs.outlines", p.outlines, {"visible", "alone"},
-                 "outline each cluster's visible leaves (one raster pass), or each cluster "
+  set.add_choice("blobs.outlines", p.outlines, {"scene", "visible", "alone"},
+                 "outline each cluster's part of the crown projected from the scene (holds "
+                 "still in a turntable), its visible leaves (one raster pass), or the cluster "
                  "rasterised alone, hidden leaves included (one pass per cluster)");
   set.add_int("blobs.peaks", p.peaks, 1, 16, "", "Gaussian peaks of each blob's height field");
   set.add_float("blobs.peak_height", p.peak_height, 0.0, 2.0, "of the blob width",
@@ -93,10 +96,35 @@ float blob_gap_radius(const BlobParams& p, const cv::Size& size) {
   return static_cast<float>(0.5 * p.gap * reference_scale(size));
 }
 
+std::vector<BlobOutline> scene_blob_outlines(const SurfaceSamples& samples, const Camera& camera,
+                                             uint32_t branch_cluster, const BlobParams& p) {
+  const cv::Size size(camera.width, camera.height);
+  // Parts a little smoothed (2 px at 1024 px, no less than a pixel) where their leaves cover a
+  // third of the pixel: the leaves' extent, which blobs.gap then closes.
+  const double sigma = std::max(1.0, 2.0 * reference_scale(size));
+  const ShrinkWrapParams sw = blob_shrink_wrap(p);
+  const float gap = blob_gap_radius(p, size);
+  std::vector<BlobOutline> out;
+  for (const PartMask& m : project_part_masks(samples, camera, sigma, 0.3f, branch_cluster)) {
+    if (m.box.empty() || cv::countNonZero(m.mask) == 0) continue;
+    out.push_back(blob_outline(m.mask, m.box, m.cluster, m.depth, sw, gap));
+  }
+  std::sort(out.begin(), out.end(),
+            [](const BlobOutline& a, const BlobOutline& b) { return a.cluster < b.cluster; });
+  return out;
+}
+
 int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
-                           const BlobParams& p) {
+                           const BlobParams& p, int samples, const Camera& camera) {
   validate_blob_params(p);
   const int out = graph.resource("blob-outlines");
+  if (samples >= 0) {
+    graph.add_pass("blob-outlines", {samples}, {out}, [=](PassContext& ctx) {
+      const auto& s = ctx.read<std::shared_ptr<const SurfaceSamples>>(samples);
+      ctx.write(out, still_blob_set(scene_blob_outlines(*s, camera, branch_cluster, p)));
+    });
+    return out;
+  }
   graph.add_pass("blob-outlines", {id, depth}, {out}, [=](PassContext& ctx) {
     const cv::Mat& ids = ctx.read<cv::Mat>(id);
     ctx.write(out, still_blob_set(find_blob_outlines(ids, ctx.read<cv::Mat>(depth), branch_cluster,

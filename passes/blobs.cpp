@@ -217,6 +217,9 @@ cv::Mat blob_edge(const std::vector<glm::vec2>& poly, const cv::Rect& box, float
   return edge;
 }
 
+// The smoothing of a blob's own leaves in its detail: px at 1024 px.
+constexpr double kOwnSigma = 2.0;
+
 // Paints blobs over an image in painter's order (Dudley §4.2-4.3), with what every blob of a
 // frame shares.
 class BlobPainter {
@@ -247,24 +250,65 @@ class BlobPainter {
     const cv::Mat edge = m_edge_px > 0 ? blob_edge(poly, box, m_edge_px, m_p.edge_left) : cv::Mat();
     const BlobShape shape =
         make_blob_shape(b.wrap.points, b.wrap.center, m_p.peaks, m_p.peak_height);
+    const OwnLeaves own = own_leaves(box, b.cluster);
     for_bands(box.height, [&](int r0, int r1) {
       for (int r = r0; r < r1; ++r)
-        paint_row(img, b, look, shape, box, inside, edge, r);
+        paint_row(img, b, look, shape, box, inside, edge, own, r);
     });
   }
 
  private:
+  // The blob's own leaves in its box, as the raster drew them, smoothed a little (kOwnSigma px
+  // at 1024 px) so the detail does not flicker with the leaves and needles that land on pixel
+  // centres or miss them as the view turns: their share of each pixel and their colour there
+  // (linear BGR surface colour).
+  struct OwnLeaves {
+    cv::Mat share;  // CV_32FC1 in [0, 1]
+    cv::Mat color;  // CV_32FC3
+  };
+  OwnLeaves own_leaves(const cv::Rect& box, uint32_t cluster) const {
+    const auto& lin = srgb_tables().to_linear;
+    OwnLeaves o;
+    o.share = cv::Mat(box.size(), CV_32FC1, cv::Scalar(0));
+    o.color = cv::Mat(box.size(), CV_32FC3, cv::Scalar(0, 0, 0));
+    for (int r = 0; r < box.height; ++r) {
+      const int32_t* ids = m_in.id.ptr<int32_t>(box.y + r) + box.x;
+      const cv::Vec4b* col = m_in.color.ptr<cv::Vec4b>(box.y + r) + box.x;
+      float* sh = o.share.ptr<float>(r);
+      cv::Vec3f* c = o.color.ptr<cv::Vec3f>(r);
+      for (int x = 0; x < box.width; ++x) {
+        if (static_cast<uint32_t>(ids[x]) != cluster) continue;
+        float coverage = 0;
+        const glm::vec3 v = surface_color(col[x], m_bg, lin, &coverage);
+        sh[x] = coverage;
+        c[x] = coverage * cv::Vec3f(v.x, v.y, v.z);
+      }
+    }
+    const double sigma = kOwnSigma * reference_scale(m_in.id.size());
+    if (sigma >= 0.3) {
+      cv::GaussianBlur(o.share, o.share, {0, 0}, sigma);
+      cv::GaussianBlur(o.color, o.color, {0, 0}, sigma);
+    }
+    for (int r = 0; r < box.height; ++r) {
+      const float* sh = o.share.ptr<float>(r);
+      cv::Vec3f* c = o.color.ptr<cv::Vec3f>(r);
+      for (int x = 0; x < box.width; ++x)
+        c[x] = sh[x] > 1e-6f ? c[x] / sh[x] : cv::Vec3f(0, 0, 0);
+    }
+    return o;
+  }
+
   // Row r of the blob's box: the shaded wash, the leaf detail blended in by the blend light
   // where the blob's own cluster is, the edge's ink, composited with the blob's opacity.
   void paint_row(cv::Mat& img, const BlobOutline& b, const BlobLook& look, const BlobShape& shape,
-                 const cv::Rect& box, const cv::Mat& inside, const cv::Mat& edge, int r) const {
-    const auto& lin = srgb_tables().to_linear;
+                 const cv::Rect& box, const cv::Mat& inside, const cv::Mat& edge,
+                 const OwnLeaves& own, int r) const {
     const glm::vec3 sil = glm::min(glm::vec3(1.0f), m_p.silhouette_tone * look.wash);
     const int y = box.y + r;
     const uint8_t* ins = inside.ptr<uint8_t>(r);
     const uint8_t* eg = edge.empty() ? nullptr : edge.ptr<uint8_t>(r);
-    const int32_t* ids = m_in.id.ptr<int32_t>(y);
-    const cv::Vec4b* col = m_in.color.ptr<cv::Vec4b>(y);
+    const float* share = own.share.ptr<float>(r);
+    const cv::Vec3f* own_color = own.color.ptr<cv::Vec3f>(r);
     const float* ln = m_in.lines.empty() ? nullptr : m_in.lines.ptr<float>(y);
     cv::Vec4f* o = img.ptr<cv::Vec4f>(y);
     for (int cx = 0; cx < box.width; ++cx) {
@@ -276,12 +320,12 @@ class BlobPainter {
         light += m_lights[k].color * std::max(0.0f, glm::dot(n, look.light_dirs[k]));
       const glm::vec3 approx = look.wash * glm::vec3(light.b, light.g, light.r);
       glm::vec3 c = approx;
-      if (static_cast<uint32_t>(ids[x]) == b.cluster) {
+      if (share[cx] > 0.0f) {
         const float alpha = std::clamp(
             m_p.blend_ambient + m_p.blend_diffuse * std::max(0.0f, glm::dot(n, look.blend_dir)),
             0.0f, 1.0f);
-        float coverage = 0;
-        glm::vec3 detail = surface_color(col[x], m_bg, lin, &coverage);
+        const float coverage = share[cx];
+        glm::vec3 detail(own_color[cx][0], own_color[cx][1], own_color[cx][2]);
         if (ln) detail += (sil - detail) * ln[x];
         // Where the leaf covers the pixel partly, the wash fills the rest.
         c = approx + (approx * alpha + detail * (1.0f - alpha) - approx) * coverage;

@@ -4,7 +4,9 @@
 // height field with Gaussian peaks at the regional centres (npr/blob_shape.h) is shaded twice:
 // with the scene lights in the cluster's mean albedo (the colour wash), and with the blend
 // light, whose brightness is the alpha mask: Final = wash x alpha + detail x (1 - alpha)
-// (§4.2), where detail is the cluster's own leaves as the raster pass drew them, optionally with
+// (§4.2), where detail is the cluster's own leaves as the raster pass drew them (smoothed over
+// 2 px at 1024 px, so needles landing on pixel centres or missing them as a turntable turns do
+// not flicker; where they cover part of a pixel the wash fills the rest), optionally with
 // their silhouettes in silhouette_tone x the unlit blob colour (§4.2.2). An outline in
 // edge_tone x the lit wash runs around each blob, wider where the edge lies to the pixel's
 // left (§4.2.2, for depth). Painter's algorithm (§4.3): trunk and branches from the raster
@@ -28,10 +30,12 @@
 #include <string>
 #include <vector>
 
+#include "core/gl/camera.h"
 #include "core/gl/lights.h"
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "npr/blob_outlines.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
@@ -45,11 +49,14 @@ struct BlobParams {
   // of reaching in between its leaves. px at 1024 px; 0 = Dudley's plain leaf mask.
   // [0, 128]; default 24.
   float gap = 24.0f;
-  // blobs.outlines: "visible" shrink-wraps each cluster's visible leaves from the frame's one
-  // cluster-id raster pass; "alone" rasterises each cluster on its own (hidden leaves
-  // included, Dudley §4.2.1) for its outline and nearest depth: one more pass per cluster
-  // (styles/blob_raster.h).
-  std::string outlines = "visible";
+  // blobs.outlines: "scene" shrink-wraps each cluster's part of the crown projected from the
+  // scene's surface samples, the parts painted back to front by their mean depth
+  // (passes/crown_coverage.h), so blobs hold still in a turntable (issue "Temporal
+  // coherence"; without surface samples, "visible"); "visible" shrink-wraps each cluster's
+  // visible leaves from the frame's one cluster-id raster pass; "alone" rasterises each
+  // cluster on its own (hidden leaves included, Dudley §4.2.1) for its outline and nearest
+  // depth: one more pass per cluster (styles/blob_raster.h).
+  std::string outlines = "scene";
   // blobs.peaks: Gaussian peaks of the height field (Dudley uses 3). [1, 16]; default 3.
   int peaks = 3;
   // blobs.peak_height: peak height as a fraction of the blob's width: 0 flat, 1 as high as
@@ -130,9 +137,16 @@ struct BlobResources {
 ShrinkWrapParams blob_shrink_wrap(const BlobParams& p);
 float blob_gap_radius(const BlobParams& p, const cv::Size& size);
 
-// Adds "blob-outlines" (reads id and depth; writes the frame's BlobSet) and returns it.
+// The blobs of blobs.outlines = "scene" seen by `camera` (its size is the image's): each
+// cluster's part of the crown (passes/crown_coverage.h, the wood left out), closed by
+// blobs.gap and shrink-wrapped, ordered by the parts' mean depths.
+std::vector<BlobOutline> scene_blob_outlines(const SurfaceSamples& samples, const Camera& camera,
+                                             uint32_t branch_cluster, const BlobParams& p);
+
+// Adds "blob-outlines" (reads id and depth, or with `samples` >= 0 the "surface-samples" seen
+// by `camera`; writes the frame's BlobSet) and returns it.
 int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
-                           const BlobParams& p);
+                           const BlobParams& p, int samples = -1, const Camera& camera = {});
 // Adds "blobs" (reads `outlines` and the images above) and returns "blobs".
 int add_blobs_pass(RenderGraph& graph, int outlines, const BlobResources& r, const BlobFrame& frame,
                    const BlobParams& p);

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "core/error.h"
 #include "core/random.h"
+#include "passes/crown_coverage.h"
 #include "passes/ink_abstraction.h"
+#include "passes/ink_working.h"
 #include "passes/pass_common.h"
 
 namespace sylva {
@@ -84,8 +88,9 @@ bool covered(const cv::Mat& color, int x, int y) {
 struct Anchor {
   uint64_t key;
   double rank;
-  float cx, cy;  // continuous image coordinates of the projected point
-  int x, y;      // the pixel it falls in
+  float cx, cy;    // continuous image coordinates of the projected point
+  int x, y;        // the pixel it falls in
+  int region = 0;  // the leaf cluster most of the cube's visible pixels show (0 = none)
 };
 
 uint64_t cube_key(const glm::vec3& p, double cube) {
@@ -104,34 +109,131 @@ glm::vec3 cube_point(uint64_t key, double cube, uint64_t seed) {
           float((double(c(42)) + hash01(key, seed * 4 + 3)) * cube)};
 }
 
-// The cubes the visible surface passes through (each visible pixel's world point names one),
-// kept where the cube's seeded point projects onto a visible pixel whose surface lies within
-// two cubes of the point's depth: the surface near the point is in sight.
-std::vector<Anchor> scene_anchors(const ToneImages& in, const ToneView& view, double cube,
-                                  uint64_t seed) {
-  const glm::mat4 to_world = glm::inverse(view.view);
-  std::vector<uint64_t> keys;
-  for (int y = 0; y < in.color.rows; ++y)
-    for (int x = 0; x < in.color.cols; ++x) {
-      if (!covered(in.color, x, y)) continue;
-      const cv::Vec3f v = in.position.at<cv::Vec3f>(y, x);
-      keys.push_back(cube_key(glm::vec3(to_world * glm::vec4(v[0], v[1], v[2], 1.0f)), cube));
+// Each cube of `named` (sorted) once, with the cluster most of its pixels show (ties: the
+// smaller id): a region that belongs to the cube, so a stroke's angle does not change as other
+// leaves come and go in front of its pixel.
+std::vector<std::pair<uint64_t, int>> cube_regions(
+    const std::vector<std::pair<uint64_t, int>>& named) {
+  std::vector<std::pair<uint64_t, int>> out;
+  for (size_t i = 0; i < named.size();) {
+    size_t end = i;
+    int best = named[i].second, most = 0;
+    while (end < named.size() && named[end].first == named[i].first) {
+      size_t run = end;
+      while (run < named.size() && named[run] == named[end])
+        ++run;
+      if (int(run - end) > most) {
+        most = int(run - end);
+        best = named[end].second;
+      }
+      end = run;
     }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    out.emplace_back(named[i].first, best);
+    i = end;
+  }
+  return out;
+}
+
+// Whether what the raster shows within one pixel of (x, y) hides the view depth `z` (view-space
+// z, negative in front of the eye): its nearest surface lies more than `tolerance` in front.
+// Nothing shown there hides nothing.
+bool hidden(const ToneImages& in, int x, int y, float z, float tolerance) {
+  float nearest = -1e30f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int u = x + dx, v = y + dy;
+      if (u < 0 || v < 0 || u >= in.color.cols || v >= in.color.rows || !covered(in.color, u, v))
+        continue;
+      nearest = std::max(nearest, in.position.at<cv::Vec3f>(v, u)[2]);
+    }
+  return z < nearest - tolerance;
+}
+
+// The cubes the plant's surface passes through, each once with its region: from the surface
+// samples (fixed in the scene), else from the visible pixels' world points.
+std::vector<std::pair<uint64_t, int>> surface_cubes(const ToneImages& in, const ToneView& view,
+                                                    double cube) {
+  std::vector<std::pair<uint64_t, int>> named;  // (cube, the naming point's cluster)
+  if (in.samples) {
+    const SurfaceSamples& s = *in.samples;
+    for (size_t i = 0; i < s.size(); ++i)
+      named.emplace_back(cube_key(s.positions[i], cube), int(s.clusters[i]));
+  } else {
+    const glm::mat4 to_world = glm::inverse(view.view);
+    for (int y = 0; y < in.color.rows; ++y)
+      for (int x = 0; x < in.color.cols; ++x) {
+        if (!covered(in.color, x, y)) continue;
+        const cv::Vec3f v = in.position.at<cv::Vec3f>(y, x);
+        const glm::vec3 world(to_world * glm::vec4(v[0], v[1], v[2], 1.0f));
+        named.emplace_back(cube_key(world, cube), in.id.empty() ? 0 : in.id.at<int>(y, x));
+      }
+  }
+  std::sort(named.begin(), named.end());
+  return cube_regions(named);
+}
+
+// Without surface samples, anchors within this many cubes behind the nearest surface seen are
+// in sight: the crown's front shell, deep enough that a leaf turning in front of an anchor does
+// not hide it. With them, anchors at most kMidCubes behind the crown's mean depth (the front
+// half of the crown, and a little more): a test that moves with the scene.
+constexpr float kShellCubes = 16.0f;
+constexpr float kMidCubes = 8.0f;
+
+// The crown's mean view-space z at `size` (a working resolution of the frame of size `out`): the
+// surface samples' z, area-weighted and smoothed by a Gaussian of `sigma` px; -inf where no
+// sample is near. It moves with the scene, and a leaf turning in front of another does not
+// change it.
+cv::Mat crown_mid_depth(const SurfaceSamples& s, const ToneView& view, cv::Size size, cv::Size out,
+                        double sigma) {
+  cv::Mat wz(size, CV_32FC1, cv::Scalar(0)), wa(size, CV_32FC1, cv::Scalar(0));
+  const float fx = float(size.width) / float(out.width),
+              fy = float(size.height) / float(out.height);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const glm::vec4 q = view.view * glm::vec4(s.positions[i], 1.0f);
+    const glm::vec4 clip = view.proj * q;
+    if (!(clip.w > 0.0f)) continue;
+    const int x = int(std::floor((clip.x / clip.w * 0.5f + 0.5f) * float(out.width) * fx));
+    const int y = int(std::floor((0.5f - clip.y / clip.w * 0.5f) * float(out.height) * fy));
+    if (x < 0 || y < 0 || x >= size.width || y >= size.height) continue;
+    wz.at<float>(y, x) += s.areas[i] * q.z;
+    wa.at<float>(y, x) += s.areas[i];
+  }
+  cv::GaussianBlur(wz, wz, {0, 0}, sigma);
+  cv::GaussianBlur(wa, wa, {0, 0}, sigma);
+  cv::Mat mid;
+  cv::divide(wz, cv::max(wa, 1e-12f), mid);
+  mid.setTo(-1e30f, wa <= 1e-12f);
+  return mid;
+}
+
+// The cubes the plant's surface passes through whose seeded point projects inside the region
+// the strokes are drawn in (`inside`) and is in sight (kMidCubes, kShellCubes): each an anchor
+// at the point's projection, which moves exactly with the scene. detail_px: ink.detail in px.
+std::vector<Anchor> scene_anchors(const ToneImages& in, const ToneView& view, double cube,
+                                  uint64_t seed, const cv::Mat& inside, double detail_px) {
   std::vector<Anchor> anchors;
   const float w = float(in.color.cols), h = float(in.color.rows);
-  for (uint64_t key : keys) {
+  double f = 1.0;
+  cv::Mat mid;
+  if (in.samples) {
+    const cv::Size size = working_size(in.color.size(), std::max(2.0, detail_px), f);
+    mid = crown_mid_depth(*in.samples, view, size, in.color.size(), kWorkingDetail);
+  }
+  for (const auto& [key, region] : surface_cubes(in, view, cube)) {
     const glm::vec4 q = view.view * glm::vec4(cube_point(key, cube, seed), 1.0f);
     const glm::vec4 clip = view.proj * q;
     if (clip.w <= 0.0f) continue;
     const float cx = (clip.x / clip.w * 0.5f + 0.5f) * w, cy = (0.5f - clip.y / clip.w * 0.5f) * h;
     const int x = int(std::floor(cx)), y = int(std::floor(cy));
-    if (x < 0 || y < 0 || x >= in.color.cols || y >= in.color.rows || !covered(in.color, x, y))
+    if (x < 0 || y < 0 || x >= in.color.cols || y >= in.color.rows || !inside.at<uint8_t>(y, x))
       continue;
-    const float surface = in.position.at<cv::Vec3f>(y, x)[2];
-    if (std::abs(surface - q.z) > 2.0 * cube) continue;
-    anchors.push_back({key, hash01(key, seed * 4), cx, cy, x, y});
+    if (!mid.empty()) {
+      const int u = std::min(mid.cols - 1, int(cx / f)), v = std::min(mid.rows - 1, int(cy / f));
+      if (q.z < mid.at<float>(v, u) - kMidCubes * float(cube)) continue;
+    } else if (hidden(in, x, y, q.z, kShellCubes * float(cube))) {
+      continue;
+    }
+    anchors.push_back({key, hash01(key, seed * 4), cx, cy, x, y, region});
   }
   return anchors;  // in key order
 }
@@ -193,6 +295,86 @@ cv::Mat tone_darkness(const cv::Mat& color) {
   return dark;
 }
 
+namespace {
+
+// The tone at the picture's scale: darkness averaged over the plant with a Gaussian of sigma =
+// ink.detail px (the crown's parts, not its leaves, whose shading changes as they turn), and
+// its range: the darkness at the pen.lightest and pen.darkest quantiles of the plant.
+struct ToneField {
+  cv::Mat dark;  // CV_32FC1
+  double lo = 0, hi = 1;
+  bool empty = true;  // no plant pixel
+};
+
+ToneField tone_field(const cv::Mat& color, const cv::Mat& plant, const PenParams& p,
+                     double detail_px) {
+  ToneField t;
+  cv::Mat weight, mask;
+  t.dark = tone_darkness(color);
+  plant.convertTo(mask, CV_32F, 1.0 / 255.0);
+  const double sigma = std::max(1.0, detail_px);
+  cv::GaussianBlur(t.dark, t.dark, {0, 0}, sigma);
+  cv::GaussianBlur(mask, weight, {0, 0}, sigma);
+  cv::divide(t.dark, cv::max(weight, 1e-6f), t.dark);
+  std::vector<float> values;
+  for (int y = 0; y < plant.rows; ++y)
+    for (int x = 0; x < plant.cols; ++x)
+      if (plant.at<uint8_t>(y, x)) values.push_back(t.dark.at<float>(y, x));
+  if (values.empty()) return t;
+  auto quantile = [&](double q) {
+    const size_t k = std::min(values.size() - 1, size_t(q * double(values.size() - 1) + 0.5));
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.end());
+    return double(values[k]);
+  };
+  t.lo = quantile(p.lightest);
+  t.hi = std::max(quantile(p.darkest), t.lo + 1e-3);
+  t.empty = false;
+  return t;
+}
+
+// Where strokes may be drawn: the plant, and its crown at ink.detail: from the scene as the ink
+// outline's (passes/ink_abstraction.h crown_field over passes/crown_coverage.h), else the
+// raster's crown_shape with its thin parts.
+cv::Mat stroke_region(const ToneImages& in, const ToneView& view, const cv::Mat& plant,
+                      double detail_px) {
+  if (!in.samples) {
+    const CrownShape crown = crown_shape(plant, detail_px);
+    return crown.body | crown.thin | plant;
+  }
+  Camera camera;
+  camera.view = view.view;
+  camera.proj = view.proj;
+  camera.ortho = view.ortho;
+  double f = 1.0;
+  const cv::Size size = working_size(plant.size(), std::max(2.0, detail_px), f);
+  const cv::Mat coverage = crown_coverage(*in.samples, camera, size, 0.25 * kWorkingDetail);
+  cv::Mat inside;
+  cv::resize(crown_field(coverage, detail_px / f).body, inside, plant.size(), 0, 0,
+             cv::INTER_NEAREST);
+  return inside | plant;
+}
+
+// One hatching stroke or stipple dot at anchor `a` (layer 1 crosses layer 0), clipped to
+// `inside`; false when nothing is left.
+bool tone_mark(const Anchor& a, int layer, const PenParams& p, double length, const cv::Mat& inside,
+               Stroke& s) {
+  const cv::Point2f centre(a.cx, a.cy);
+  if (p.tone == "stipple") {
+    s.points = {{centre.x, centre.y}};
+    return true;
+  }
+  const uint64_t seed = uint64_t(p.seed);
+  const double phi =
+      (p.angle + p.angle_jitter * (2.0 * hash01(uint64_t(a.region), seed * 4 + 5) - 1.0) +
+       90.0 * layer) *
+      std::numbers::pi / 180.0;
+  const double len = length * (0.75 + 0.5 * hash01(a.key, seed * 4 + 6));
+  const cv::Point2f dir(float(std::cos(phi)), float(-std::sin(phi)));  // y points down
+  return clipped_line(inside, centre, dir, len, s);
+}
+
+}  // namespace
+
 StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const PenParams& p,
                            double detail) {
   const cv::Size size = in.color.size();
@@ -204,27 +386,9 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   cv::Mat alpha, plant;
   cv::extractChannel(in.color, alpha, 3);
   plant = alpha >= 128;
-  // Tone at the picture's scale: darkness averaged over the plant.
-  cv::Mat dark = tone_darkness(in.color), weight, mask;
-  plant.convertTo(mask, CV_32F, 1.0 / 255.0);
-  const double sigma = std::max(1.0, 0.5 * detail * scale);
-  cv::GaussianBlur(dark, dark, {0, 0}, sigma);
-  cv::GaussianBlur(mask, weight, {0, 0}, sigma);
-  // The tone's range: the darkness at the pen.lightest and pen.darkest quantiles of the plant.
-  cv::divide(dark, cv::max(weight, 1e-6f), dark);
-  std::vector<float> values;
-  for (int y = 0; y < size.height; ++y)
-    for (int x = 0; x < size.width; ++x)
-      if (plant.at<uint8_t>(y, x)) values.push_back(dark.at<float>(y, x));
-  if (values.empty()) return d;
-  auto quantile = [&](double q) {
-    const size_t k = std::min(values.size() - 1, size_t(q * double(values.size() - 1) + 0.5));
-    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(k), values.end());
-    return double(values[k]);
-  };
-  const double lo = quantile(p.lightest), hi = std::max(quantile(p.darkest), lo + 1e-3);
-  const CrownShape crown = crown_shape(plant, detail * scale);
-  const cv::Mat inside = crown.body | crown.thin | plant;
+  const ToneField tone = tone_field(in.color, plant, p, detail * scale);
+  if (tone.empty) return d;
+  const cv::Mat inside = stroke_region(in, view, plant, detail * scale);
   // Small renders: strokes no thinner than 1 px, and then no closer than 4 widths (spacing and
   // length grow together), so the tone does not fill in solid.
   const double width = std::max(1.0, p.width * scale);
@@ -232,11 +396,8 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   const double spacing = p.spacing * scale * grow, length = p.length * scale * grow;
   const uint64_t seed = uint64_t(p.seed);
   // Cubes of half the spacing: enough candidates for the densest tone.
-  std::vector<Anchor> anchors = scene_anchors(in, view, 0.5 * spacing * view.units_per_px, seed);
-  auto tone_at = [&](const Anchor& a) {
-    const double darkness = dark.at<float>(a.y, a.x);
-    return std::pow(std::clamp((darkness - lo) / (hi - lo), 0.0, 1.0), double(p.gamma));
-  };
+  const std::vector<Anchor> anchors =
+      scene_anchors(in, view, 0.5 * spacing * view.units_per_px, seed, inside, detail * scale);
   Stroke s;
   s.cls = LineClass::Tone;
   s.opacity = p.opacity;
@@ -249,23 +410,13 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   for (int layer = 0; layer < (p.tone == "hatching" && p.cross < 1.0f ? 2 : 1); ++layer)
     for (size_t i = 0; i < anchors.size(); ++i) {
       const Anchor& a = anchors[i];
-      double t = tone_at(a);
+      const double darkness = tone.dark.at<float>(a.y, a.x);
+      double t = std::pow(std::clamp((darkness - tone.lo) / (tone.hi - tone.lo), 0.0, 1.0),
+                          double(p.gamma));
       if (layer == 1) t = (t - p.cross) / (1.0 - p.cross);
       const double rank = layer == 0 ? a.rank : hash01(a.key, seed * 4 + 7);
       if (t <= 0.02 || rank >= t / per_cell[i]) continue;
-      const cv::Point2f centre(a.cx, a.cy);
-      if (p.tone == "stipple") {
-        s.points = {{centre.x, centre.y}};
-        d.strokes.push_back(s);
-        continue;
-      }
-      const uint64_t region = in.id.empty() ? 0 : uint64_t(in.id.at<int>(a.y, a.x));
-      const double phi =
-          (p.angle + p.angle_jitter * (2.0 * hash01(region, seed * 4 + 5) - 1.0) + 90.0 * layer) *
-          std::numbers::pi / 180.0;
-      const double len = length * (0.75 + 0.5 * hash01(a.key, seed * 4 + 6));
-      const cv::Point2f dir(float(std::cos(phi)), float(-std::sin(phi)));  // y points down
-      if (clipped_line(inside, centre, dir, len, s)) d.strokes.push_back(s);
+      if (tone_mark(a, layer, p, length, inside, s)) d.strokes.push_back(s);
     }
   return d;
 }
@@ -276,12 +427,15 @@ int add_tone_pass(RenderGraph& g, const ToneResources& in, const ToneView& view,
               "tone pass needs the position and color resources");
   std::vector<int> reads = {in.position, in.color};
   if (in.id >= 0) reads.push_back(in.id);
+  if (in.samples >= 0) reads.push_back(in.samples);
   const int out = g.resource("tone-strokes");
   g.add_pass("tone-strokes", reads, {out}, [=](PassContext& ctx) {
     ToneImages images;
     images.position = ctx.read<cv::Mat>(in.position);
     images.color = ctx.read<cv::Mat>(in.color);
     if (in.id >= 0) images.id = ctx.read<cv::Mat>(in.id);
+    if (in.samples >= 0)
+      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
     ctx.write(out, tone_strokes(images, view, p, detail));
   });
   return out;

@@ -4,32 +4,40 @@
 // inner, shadowed crown is dense and the lit rim bare, and wood by its own shading and bark.
 //
 // Tone: darkness = 1 - the Rec. 709 luma of the colour (sRGB), averaged over the plant with a
-// Gaussian of sigma = ink.detail / 2 so the tone follows crown parts, not leaves; tone t =
-// clamp((darkness - lo) / (hi - lo), 0, 1)^pen.gamma with lo and hi the darkness at the
-// plant's pen.lightest and pen.darkest quantiles, so every plant gets the same range of tone
-// (a dark conifer and a light aspen alike), its own shadows dense and its lit parts bare.
+// Gaussian of sigma = ink.detail so the tone follows crown parts, not the leaves whose shading
+// changes as they turn; tone t = clamp((darkness - lo) / (hi - lo), 0, 1)^pen.gamma with lo
+// and hi the darkness at the plant's pen.lightest and pen.darkest quantiles, so every plant
+// gets the same range of tone (a dark conifer and a light aspen alike), its own shadows dense
+// and its lit parts bare.
 // Anchors are fixed to the scene, not the screen, so a turntable does not shower-door: space
 // is cut into cubes of pen.spacing / 2 px (at the plant's distance), each with a seeded point
-// and two seeded ranks; a cube the visible surface passes through, whose point projects onto a
-// visible pixel within two cubes of that surface's depth, anchors a stroke at the point's
-// projection, which moves exactly with the scene. Each anchor decides alone (no stroke's
-// coming or going moves another): it gets a stroke when its rank is below t / c, c being the
-// anchors per pen.spacing-sized cell around it (averaged over 9 x 9 cells), so the density is
-// t strokes per cell whatever the depth complexity; a second layer crossing at 90 degrees,
-// with the other rank, where the tone passes pen.cross. A hatching stroke is a straight line of
-// about pen.length px through the anchor at the crown region's angle (pen.angle plus a seeded
-// offset of up to pen.angle_jitter per leaf cluster), clipped to the plant's shape at
-// ink.detail; a stipple is a dot of pen.width. Strokes are at least 1 px wide and, in small
-// renders, spaced at least 4 widths apart (spacing and length grow together), so the tone
-// never fills in.
+// and two seeded ranks. The cubes the plant's surface passes through (from the scene's surface
+// samples, npr/surface_samples.h; without them, from the visible pixels' surface points) whose
+// point projects inside the strokes' region and is in sight anchor a stroke at the point's
+// projection, which moves exactly with the scene. In sight (issue "Temporal coherence"): with
+// surface samples, not more than 8 cubes behind the crown's mean depth there (the samples'
+// depth smoothed over the detail), a test that moves with the scene; without, not more than
+// 16 cubes behind the nearest surface the raster shows within a pixel. A cube's region is the
+// leaf cluster most of its points belong to. Each anchor decides alone (no stroke's coming or
+// going moves another): it gets a stroke when its rank is below t / c, c being the anchors per
+// pen.spacing-sized cell around it (averaged over 9 x 9 cells), so the density is t strokes
+// per cell whatever the depth complexity; a second layer crossing at 90 degrees, with the
+// other rank, where the tone passes pen.cross. A hatching stroke is a straight line of about
+// pen.length px through the anchor at its region's angle (pen.angle plus a seeded offset of
+// up to pen.angle_jitter per leaf cluster), clipped to the strokes' region: the plant and its
+// crown at ink.detail (with surface samples, the ink outline's crown, passes/ink_abstraction.h
+// crown_field; else the raster's crown_shape); a stipple is a dot of pen.width. Strokes are at
+// least 1 px wide and, in small renders, spaced at least 4 widths apart (spacing and length
+// grow together), so the tone never fills in.
 //
-// Reads (render graph): "position" (CV_32FC3 view space), "id" (CV_32SC1 cluster ids) and
-// "color" (CV_8UC4 sRGB, alpha = coverage). Writes "tone-strokes", a StrokeDrawing of
-// LineClass::Tone strokes.
+// Reads (render graph): "position" (CV_32FC3 view space), "id" (CV_32SC1 cluster ids),
+// "color" (CV_8UC4 sRGB, alpha = coverage) and, when given, "surface-samples". Writes
+// "tone-strokes", a StrokeDrawing of LineClass::Tone strokes.
 #pragma once
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 
@@ -37,6 +45,7 @@
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "core/strokes.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
@@ -83,6 +92,9 @@ struct ToneImages {
   cv::Mat position;  // CV_32FC3 view space
   cv::Mat id;        // CV_32SC1 cluster ids, or empty (one region)
   cv::Mat color;     // CV_8UC4, alpha = coverage
+  // The scene's surface samples (npr/surface_samples.h), or null: the anchors' cubes are then
+  // those the visible pixels' surface points fall in.
+  std::shared_ptr<const SurfaceSamples> samples;
 };
 
 // The frame's view: world -> view, the projection, and the scene units per px at the plant's
@@ -90,6 +102,7 @@ struct ToneImages {
 struct ToneView {
   glm::mat4 view{1.0f};
   glm::mat4 proj{1.0f};  // view -> clip (the camera's projection)
+  bool ortho = false;    // the projection is orthographic
   double units_per_px = 0.0;
 };
 
@@ -105,6 +118,7 @@ cv::Mat tone_darkness(const cv::Mat& color);
 
 struct ToneResources {
   int position = -1, id = -1, color = -1;
+  int samples = -1;  // "surface-samples", or -1
 };
 
 // Adds the pass "tone-strokes" and returns its output (StrokeDrawing).

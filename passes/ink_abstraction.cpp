@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/error.h"
 
@@ -34,7 +35,86 @@ cv::Mat long_pieces(const cv::Mat& parts, double length) {
   return out;
 }
 
+// Sets the connected pieces of `mask` (8-neighbours) smaller than `area` px to `value` in
+// `mask` and `field_value` in `field`; pieces touching the image's border are kept when
+// `keep_border`.
+void drop_small(cv::Mat& mask, cv::Mat& field, double area, bool keep_border, uint8_t value,
+                float field_value) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<uint8_t> drop(size_t(std::max(n, 1)), 0);
+  for (int i = 1; i < n; ++i) {
+    const int x = stats.at<int>(i, cv::CC_STAT_LEFT), y = stats.at<int>(i, cv::CC_STAT_TOP);
+    const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+    const bool border = x == 0 || y == 0 || x + w == mask.cols || y + h == mask.rows;
+    drop[size_t(i)] = stats.at<int>(i, cv::CC_STAT_AREA) < area && !(keep_border && border);
+  }
+  for (int y = 0; y < mask.rows; ++y) {
+    const int* l = labels.ptr<int>(y);
+    for (int x = 0; x < mask.cols; ++x)
+      if (drop[size_t(l[x])]) {
+        mask.at<uint8_t>(y, x) = value;
+        field.at<float>(y, x) = field_value;
+      }
+  }
+}
+
+float bilinear(const cv::Mat& m, float x, float y) {
+  const float fx = x - 0.5f, fy = y - 0.5f;
+  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  const float ax = fx - float(x0), ay = fy - float(y0);
+  auto at = [&m](int xx, int yy) {
+    return m.at<float>(std::clamp(yy, 0, m.rows - 1), std::clamp(xx, 0, m.cols - 1));
+  };
+  return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) +
+         ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
+}
+
 }  // namespace
+
+CrownField crown_field(const cv::Mat& coverage, double detail) {
+  SYLVA_CHECK(coverage.type() == CV_32FC1, "crown_field: CV_32FC1 coverage");
+  CrownField c;
+  if (detail < 2.0) {
+    c.field = coverage.clone();
+    c.body = coverage >= kCrownLevel;
+    return c;
+  }
+  // Constant borders: the frame's edge neither grows nor eats the plant.
+  cv::GaussianBlur(coverage, c.field, {0, 0}, 0.5 * detail, 0, cv::BORDER_CONSTANT);
+  // The frame's edge is not part of the crown: a plant the frame cuts gets a closed outline
+  // along the edge, as the binary crown_shape's opening gives it.
+  if (c.field.rows > 2 && c.field.cols > 2) {
+    cv::Mat inner = c.field(cv::Rect(1, 1, c.field.cols - 2, c.field.rows - 2)).clone();
+    c.field.setTo(0.0f);
+    inner.copyTo(c.field(cv::Rect(1, 1, c.field.cols - 2, c.field.rows - 2)));
+  }
+  c.body = c.field >= kCrownLevel;
+  cv::Mat holes = c.body == 0;
+  drop_small(holes, c.field, 4.0 * detail * detail, true, 0, kCrownLevel + 0.05f);
+  c.body = holes == 0;
+  drop_small(c.body, c.field, 16.0 * detail * detail, false, 0, kCrownLevel - 0.05f);
+  return c;
+}
+
+void snap_to_level(std::vector<cv::Point2f>& line, const cv::Mat& field, float level, float reach) {
+  SYLVA_CHECK(field.type() == CV_32FC1, "snap_to_level: CV_32FC1 field");
+  for (cv::Point2f& q : line) {
+    cv::Point2f c = q;
+    for (int step = 0; step < 4; ++step) {
+      const float v = bilinear(field, c.x, c.y) - level;
+      const float gx = 0.5f * (bilinear(field, c.x + 1, c.y) - bilinear(field, c.x - 1, c.y));
+      const float gy = 0.5f * (bilinear(field, c.x, c.y + 1) - bilinear(field, c.x, c.y - 1));
+      const float g2 = gx * gx + gy * gy;
+      if (!(g2 > 1e-8f)) break;
+      cv::Point2f move(-v * gx / g2, -v * gy / g2);
+      const float length = std::hypot(move.x, move.y);
+      if (length > 0.5f) move *= 0.5f / length;  // small steps: the field is only bilinear
+      c += move;
+    }
+    if (std::hypot(c.x - q.x, c.y - q.y) <= reach) q = c;
+  }
+}
 
 CrownShape crown_shape(const cv::Mat& plant, double detail) {
   SYLVA_CHECK(plant.type() == CV_8UC1, "crown_shape: CV_8UC1 coverage");
@@ -51,6 +131,15 @@ CrownShape crown_shape(const cv::Mat& plant, double detail) {
   cv::morphologyEx(closed, shape.body, cv::MORPH_OPEN, k, {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
   shape.thin = long_pieces(closed & ~shape.body, 2.0 * detail);
   return shape;
+}
+
+cv::Mat thin_parts(const cv::Mat& plant, const cv::Mat& body, double detail) {
+  SYLVA_CHECK(plant.type() == CV_8UC1 && body.type() == CV_8UC1 && plant.size() == body.size(),
+              "thin_parts: CV_8UC1 masks of one size");
+  if (detail < 2.0) return cv::Mat(plant.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat near_body;
+  cv::dilate(body, near_body, disc(detail));
+  return long_pieces((plant != 0) & ~near_body, 2.0 * detail);
 }
 
 cv::Mat median_depth(const cv::Mat& depth, const cv::Mat& plant, double window, float& near,

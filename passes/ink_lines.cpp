@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/stroke_render.h"
+#include "passes/ink_abstraction.h"
 #include "passes/ink_marks.h"
 #include "passes/pass_common.h"
 #include "passes/skeleton_chains.h"
@@ -78,6 +79,32 @@ std::vector<float> width_profile(const Polyline& line, float width, const LineCl
   return w;
 }
 
+// Moves each point of `line` (output px) across the line toward the side whose depth (`depth`,
+// working px = output px / f, 0 = none) is nearer, by `offset` px: an interior contour is drawn
+// on the part in front, whose edge it is, not over the part behind.
+void to_nearer_side(Polyline& line, const cv::Mat& depth, double f, float offset) {
+  const size_t n = line.points.size();
+  if (n < 2 || depth.empty()) return;
+  auto z = [&](cv::Point2f q) {
+    const int x = std::clamp(int(std::floor(q.x / f)), 0, depth.cols - 1);
+    const int y = std::clamp(int(std::floor(q.y / f)), 0, depth.rows - 1);
+    return depth.at<float>(y, x);
+  };
+  std::vector<cv::Point2f> moved(n);
+  for (size_t i = 0; i < n; ++i) {
+    const cv::Point2f a = line.points[i == 0 ? 0 : i - 1], b = line.points[std::min(n - 1, i + 1)];
+    cv::Point2f t = b - a;
+    const float length = std::hypot(t.x, t.y);
+    moved[i] = line.points[i];
+    if (length <= 0.0f) continue;
+    const cv::Point2f normal(-t.y / length, t.x / length), probe = float(1.5 * f) * normal;
+    const float left = z(line.points[i] + probe), right = z(line.points[i] - probe);
+    if (left <= 0.0f || right <= 0.0f) continue;
+    moved[i] += (left < right ? offset : -offset) * normal;
+  }
+  line.points = moved;
+}
+
 Stroke make_stroke(const Polyline& line, LineClass cls, const LineClassParams& c, float width,
                    const InkMarks& marks, const cv::Mat& depth, double scale) {
   Stroke s;
@@ -125,26 +152,30 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
     const double f = cls != LineClass::Detail ? marks.crown_scale : 1.0;
     // Smoothing: the picture's scale for the crown, else just the pixel staircase.
     const double sigma = abstracted ? detail / 3.0 : 0.7 * f;
-    // Shortest stroke kept: 2 x detail on the crown, 3 x detail for wood (the trunk and the
+    // Shortest stroke kept: 2 x detail on the crown, 6 x detail for wood (the trunk and the
     // main branches, not every twig seen through a gap), 1 x detail for leaf-level lines.
-    const double relative = cls == LineClass::Wood ? 3.0 : (crown ? 2.0 : 1.0);
+    const double relative = cls == LineClass::Wood ? 6.0 : (crown ? 2.0 : 1.0);
     const double min_length =
         std::max(edges.min_length * scale, detail >= 2.0 || !crown ? relative * detail : 0.0);
     const float width = static_cast<float>(std::max<double>(edges.min_width, c.width * scale));
-    auto add = [&](const Polyline& chain, double min, float w) {
+    auto add = [&](Polyline chain, double min, float w, bool outline) {
       if (f * polyline_length(chain) < std::max(min, 1.0)) return;
+      // The outline onto the crown field's level set, between the pixels' corners.
+      if (outline && !marks.field.empty())
+        snap_to_level(chain.points, marks.field, kCrownLevel, 1.0f);
       Polyline line = smooth_polyline(chain, sigma / f);
       for (cv::Point2f& q : line.points)
         q *= float(f);
+      if (cls == LineClass::Interior) to_nearer_side(line, marks.part_depth, f, 0.5f * w + 0.5f);
       line = simplify_polyline(line, 0.5);
       d.strokes.push_back(make_stroke(line, cls, c, w, marks, in.depth, scale));
     };
     for (const Polyline& chain : chain_cracks(marks.of[size_t(cls)]))
-      add(chain, min_length, width);
+      add(chain, min_length, width, cls == LineClass::Silhouette);
     if (cls != LineClass::Silhouette) continue;
     // Thin parts of the plant: one centre line each, of the silhouette's width.
     for (const Polyline& chain : skeleton_chains(marks.thin, detail / f))
-      add(chain, detail, width);
+      add(chain, detail, width, false);
   }
   return d;
 }
@@ -156,6 +187,7 @@ int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgePar
   std::vector<int> reads = {in.color, in.depth};
   if (normals) reads.push_back(in.normal);
   if (in.id >= 0) reads.push_back(in.id);
+  if (in.samples >= 0) reads.push_back(in.samples);
   const int out = g.resource("ink-strokes");
   g.add_pass("ink-strokes", reads, {out}, [=](PassContext& ctx) {
     InkLineImages images;
@@ -163,6 +195,10 @@ int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgePar
     images.depth = ctx.read<cv::Mat>(in.depth);
     if (normals) images.normal = ctx.read<cv::Mat>(in.normal);
     if (in.id >= 0) images.id = ctx.read<cv::Mat>(in.id);
+    if (in.samples >= 0) {
+      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+      images.camera = in.camera;
+    }
     EdgeParams e = edges;
     e.normal = normals;
     ctx.write(out, ink_line_strokes(images, e, p, branch_cluster));

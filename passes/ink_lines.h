@@ -3,37 +3,48 @@
 // strokes (core/strokes.h) from which the raster ink and the vector files are drawn.
 //
 // Abstraction (Deussen & Strothotte 2000: draw a tree at the level of detail the picture can
-// hold). ink.detail is the smallest feature drawn, in px at the 1024 px reference:
-//   - silhouette: the plant's coverage closed and then opened by a disc of that diameter (gaps
-//     and bumps smaller than it vanish); thin parts the opening removes are kept when they are
-//     long (a hanging strand, a twig: extent >= 2 x detail), so the outline of the plant at the
-//     picture's scale, traced as closed contours;
-//   - interior crown contours: where one part of the crown stands in front of another, found
-//     on the depth median-filtered over a window of that size (leaf-sized depth noise
-//     vanishes, steps between crown parts stay) as jumps larger than a share of the plant's
-//     depth extent that grows with the detail (detail / 256, Deussen & Strothotte's depth
-//     threshold relative to the picture);
+// hold). ink.detail is the smallest feature drawn, in px at the 1024 px reference. The crown's
+// lines are found at a working resolution where the detail is 5 px (passes/ink_working.h), so
+// every image size draws the same lines. Coherence (issue "Temporal coherence"): what decides
+// the silhouette and the interior lines comes from the scene where there are surface samples
+// (npr/surface_samples.h, projected by passes/crown_coverage.h), so it moves with the scene
+// from one frame of a turntable to the next instead of flickering with the leaves that land
+// on pixel centres:
+//   - silhouette: the crown's coverage (projected from the scene, else the raster's) smoothed
+//     at the detail, its level set enclosing the leaves (passes/ink_abstraction.h crown_field:
+//     small holes filled, small separate pieces dropped), traced as closed contours and moved
+//     onto the level set between the pixels' corners; and the centre lines of the thin parts
+//     outside it that are long (a hanging strand, a twig: extent >= 2 x detail);
+//   - interior crown contours: with surface samples, the crown's parts (leaf clusters) painted
+//     back to front by their mean depth (passes/crown_coverage.h project_crown_parts) outline
+//     where the part in front is nearer by more than a share of the plant's depth extent that
+//     grows with the detail (detail / 256, Deussen & Strothotte's depth threshold relative to
+//     the picture), drawn on the nearer part's side; without, steps of the depth
+//     median-filtered over the detail between the id buffer's parts;
 //   - wood: trunk and branch outlines on the raw buffers where the wood is the nearer side;
 //   - detail: leaf-level depth jumps on the raw buffers (off in the built-in presets).
-// Each chain is smoothed along its length (Gaussian, sigma = detail / 4 px for silhouettes and
+// Each chain is smoothed along its length (Gaussian, sigma = detail / 3 px for silhouettes and
 // interior lines, 0.7 px for wood and detail, which removes the pixel staircase), simplified
-// (Douglas-Peucker, 0.5 px) and dropped when shorter than 2 x detail (silhouette, interior)
-// or 1 x detail (wood, detail), and than edges.min_length. ink.detail = 0 keeps the leaf-exact
-// lines: silhouette = coverage, interior = the raw depth, normal and id discontinuities of
-// edges.*.
+// (Douglas-Peucker, 0.5 px) and dropped when shorter than 2 x detail (silhouette, interior),
+// 6 x detail (wood: the trunk and main branches, not every branch seen through a gap) or 1 x
+// detail (detail), and than edges.min_length. ink.detail = 0 keeps the leaf-exact lines:
+// silhouette = coverage, interior = the raw depth, normal and id discontinuities of edges.*.
 //
 // Reads (render graph): "color" (CV_8UC4, alpha = coverage), "depth" (CV_32FC1 linear view
 // depth, 0 = background), "normal" (CV_32FC3, only with edges.normal at ink.detail = 0), "id"
-// (CV_32SC1 cluster ids: wood = the scene's branch cluster). Writes "ink-strokes", a
-// StrokeDrawing at the frame's size.
+// (CV_32SC1 cluster ids: wood = the scene's branch cluster) and, when given,
+// "surface-samples". Writes "ink-strokes", a StrokeDrawing at the frame's size.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 
+#include "core/gl/camera.h"
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "core/strokes.h"
+#include "npr/surface_samples.h"
 #include "passes/edges.h"
 
 namespace sylva {
@@ -74,6 +85,11 @@ struct InkLineImages {
   cv::Mat depth;   // CV_32FC1
   cv::Mat normal;  // CV_32FC3 or empty (needed only for edges.normal at detail 0)
   cv::Mat id;      // CV_32SC1 cluster ids, or empty (no wood class then)
+  // The scene's surface samples (npr/surface_samples.h) and the frame's camera: the outline and
+  // the crown parts are projected from them (passes/crown_coverage.h). Null: the outline
+  // follows the colour's alpha, the parts the id buffer.
+  std::shared_ptr<const SurfaceSamples> samples;
+  Camera camera;
 };
 
 // The strokes of one frame. branch_cluster: the cluster id of trunk and branches (0 = none).
@@ -84,6 +100,8 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
 
 struct InkLineResources {
   int color = -1, depth = -1, normal = -1, id = -1;
+  int samples = -1;  // "surface-samples" (npr/surface_samples.h), or -1
+  Camera camera;     // the frame's, with samples
 };
 
 // Adds the pass "ink-strokes" and returns its output "ink-strokes" (StrokeDrawing).

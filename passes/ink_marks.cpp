@@ -5,8 +5,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "passes/crown_coverage.h"
 #include "passes/edge_marks.h"
 #include "passes/ink_abstraction.h"
+#include "passes/ink_working.h"
 #include "passes/pass_common.h"
 
 namespace sylva {
@@ -107,6 +109,22 @@ void mark_interior(Cracks& c, const cv::Mat& median, const cv::Mat& crown, const
   });
 }
 
+// Crown-part contours from the scene: where the front parts (passes/crown_coverage.h) of two
+// neighbouring pixels differ and the parts' mean depths differ by more than `jump` (scene units).
+void mark_part_contours(Cracks& c, const CrownParts& parts, const cv::Mat& crown,
+                        const uint8_t* near_sil, const cv::Mat& near_wood, float jump) {
+  cv::Mat k0, k1;
+  const uint8_t* in = flat_u8(crown, k0);
+  const uint8_t* nw = flat_u8(near_wood, k1);
+  const int* label = parts.label.ptr<int>();
+  const float* z = parts.depth.ptr<float>();
+  mark_cracks(c, [&](int p, int q) {
+    if ((in[p] & in[q]) == 0 || (near_sil[p] | near_sil[q] | nw[p] | nw[q]) != 0) return false;
+    if (label[p] == 0 || label[q] == 0 || label[p] == label[q]) return false;
+    return std::abs(z[p] - z[q]) > jump;
+  });
+}
+
 // The leaf-exact lines of edges.* (passes/edge_marks.h) sorted into silhouette, wood and
 // `foliage_class`: a crack on the plant's boundary is silhouette, one with wood on its nearer
 // side is wood, the rest `foliage_class`. A crease on a pixel centre counts as the crack to its
@@ -144,50 +162,86 @@ EdgeImages edge_images(const InkLineImages& in) {
   return e;
 }
 
-// The working resolution of the crown's lines: the detail kWorkingDetail px across, never above
-// the output's own resolution.
-constexpr double kWorkingDetail = 5.0;
+// The crown's parts for interior lines: smoothed over the detail, a part where its own coverage
+// is at least a half.
+constexpr float kPartLevel = 0.5f;
 
-struct Working {
-  double factor = 1.0;  // output px per working px, >= 1
-  cv::Mat plant, depth, wood;
-  cv::Mat parts;  // CV_32SC1 crown parts (leaf clusters, majority-filtered), or empty
+// The class masks the crown's classes read, at the working resolution.
+struct CrownMasks {
+  cv::Mat crown;     // the crown's body (crown_field)
+  cv::Mat near_sil;  // within reach of the outline or of a thin part's centre line
 };
 
-// Coverage, wood and the covered pixels' mean depth, area-averaged down to the working size.
-Working working_images(const cv::Mat& depth, const cv::Mat& plant, const cv::Mat& wood,
-                       const cv::Mat& id, double detail) {
-  Working w;
-  w.factor = std::max(1.0, detail / kWorkingDetail);
-  const cv::Size size(std::max(1, int(std::lround(plant.cols / w.factor))),
-                      std::max(1, int(std::lround(plant.rows / w.factor))));
-  w.factor = double(plant.cols) / size.width;
-  // Coverage as a density: area-averaged, then blurred by a quarter of the detail, so the
-  // crown is the same level set whether one working pixel averages 1 or 16 rendered ones.
-  cv::Mat cover, weighted, mean, density, spread, wood_share;
-  plant.convertTo(cover, CV_32F, 1.0 / 255.0);
-  cv::resize(depth.mul(cover), weighted, size, 0, 0, cv::INTER_AREA);
-  cv::resize(cover, cover, size, 0, 0, cv::INTER_AREA);
-  const double sigma = 0.25 * kWorkingDetail;
-  cv::GaussianBlur(cover, density, {0, 0}, sigma);
-  w.plant = density >= 0.25f;
-  // Depth: the covered pixels' mean in each working pixel (steps between crown parts stay
-  // sharp); where none is covered, the blurred mean around it.
-  cv::divide(weighted, cv::max(cover, 1e-6f), mean);
-  cv::GaussianBlur(weighted, spread, {0, 0}, sigma);
-  cv::divide(spread, cv::max(density, 1e-6f), spread);
-  spread.copyTo(mean, cover <= 0.0f);
-  w.depth = cv::Mat(size, CV_32FC1, cv::Scalar(0));
-  mean.copyTo(w.depth, w.plant);
-  wood.convertTo(wood_share, CV_32F, 1.0 / 255.0);
-  cv::resize(wood_share, wood_share, size, 0, 0, cv::INTER_AREA);
-  w.wood = (wood_share >= 0.25f) & w.plant;
-  if (!id.empty()) {
-    cv::resize(id, w.parts, size, 0, 0, cv::INTER_NEAREST);
-    w.parts.setTo(0, ~w.plant);
-    w.parts = majority_labels(w.parts, int(std::lround(0.5 * kWorkingDetail)));
+// The silhouette: the crown field's outline and the thin parts' centre lines (InkMarks::thin).
+CrownMasks mark_outline(const InkWorking& w, const EdgeParams& edges, double detail, double scale,
+                        InkMarks& out) {
+  const double px = 1.0 / w.factor;  // working px per output px
+  const CrownField shape = crown_field(w.coverage, detail * px);
+  out.field = shape.field;
+  out.thin = edges.silhouette ? thin_parts(w.coverage >= kPlantLevel, shape.body, detail * px)
+                              : cv::Mat(w.plant.size(), CV_8UC1, cv::Scalar(0));
+  if (edges.silhouette)
+    mark_cracks(out.of[size_t(LineClass::Silhouette)],
+                [c = shape.body.ptr<uint8_t>()](int a, int b) { return c[a] != c[b]; });
+  // Wood and interior lines keep off the outline (which lies up to half the detail outside the
+  // crown's leaves, crown_field), and off the centre lines of thin parts.
+  cv::Mat thin_band;
+  const double band = std::max(1.0, 2.5 * scale * px);
+  cv::dilate(out.thin, thin_band, disc(2.0 * band + 1.0));
+  return {shape.body, near_boundary(shape.body, band + 0.5 * detail * px) | thin_band};
+}
+
+void mark_wood_lines(const InkWorking& w, const CrownMasks& m, const EdgeParams& edges,
+                     InkMarks& out) {
+  Flat fw;
+  fw.plant = flat_u8(w.plant, fw.keep[0]);
+  fw.wood = flat_u8(w.wood, fw.keep[1]);
+  fw.keep[2] = w.depth;
+  fw.depth = fw.keep[2].ptr<float>();
+  cv::Mat keep;
+  mark_wood(out.of[size_t(LineClass::Wood)], fw, flat_u8(m.near_sil, keep), edges.depth_threshold);
+}
+
+// Interior crown contours: from the crown's parts in the scene when there are surface samples,
+// else from the depth median-filtered and the id buffer's parts.
+void mark_interior_lines(const InkLineImages& in, const InkWorking& w, const CrownMasks& m,
+                         const InkLineParams& p, uint32_t branch_cluster, double scale,
+                         InkMarks& out) {
+  const double px = 1.0 / w.factor, detail = p.detail * scale;
+  cv::Mat near_wood, keep;
+  // Where wood lines are drawn (wood in front), the crown's lines keep off; the parts' borders
+  // with wood behind foliage are interior lines.
+  cv::dilate(crack_pixels(out.of[size_t(LineClass::Wood)]), near_wood,
+             disc(2.0 * std::max(1.0, 1.5 * scale * px) + 1.0));
+  // Deussen & Strothotte's depth threshold, relative to the picture: detail / 256 of the
+  // plant's depth extent (4 % at the default 10 px).
+  const double share = std::min(1.0, p.detail / 256.0);
+  Cracks& c = out.of[size_t(LineClass::Interior)];
+  if (in.samples) {
+    const CrownParts parts =
+        project_crown_parts(*in.samples, w.camera, detail * px, kPartLevel, branch_cluster);
+    out.part_depth = parts.depth;
+    mark_part_contours(c, parts, m.crown, flat_u8(m.near_sil, keep), near_wood,
+                       float(share * (out.far - out.near)));
+  } else {
+    float near = 0, far = 0;
+    const cv::Mat median = median_depth(w.depth, w.plant, detail * px, near, far);
+    mark_interior(c, median, m.crown, w.parts, flat_u8(m.near_sil, keep), near_wood,
+                  int(std::lround(253.0 * share)));
   }
-  return w;
+}
+
+// The leaf-level lines of edges.* at the frame's resolution, as `cls` (and silhouette and wood
+// where they are, when `silhouette`).
+void mark_leaf_lines(const InkLineImages& in, const EdgeParams& edges, const Flat& f, LineClass cls,
+                     bool silhouette, InkMarks& out) {
+  EdgeParams e = edges;
+  e.silhouette = e.silhouette && silhouette;
+  e.id = e.id && silhouette && !in.id.empty();
+  e.normal = e.normal && !in.normal.empty();
+  cv::Mat fg;
+  sort_edge_marks(find_edge_marks(edge_images(in), e, fg), f, in.color.size(), out, cls,
+                  e.silhouette);
 }
 
 }  // namespace
@@ -221,67 +275,23 @@ InkMarks mark_ink_lines(const InkLineImages& in, const EdgeParams& edges, const 
   const double detail = p.detail * scale;
   out.thin = cv::Mat(size, CV_8UC1, cv::Scalar(0));
   out.crown_scale = 1.0;
-  if (detail < 2.0) {  // leaf-exact: today's lines, sorted into classes
-    EdgeParams e = edges;
-    e.id = e.id && !in.id.empty();
-    cv::Mat fg;
-    sort_edge_marks(find_edge_marks(edge_images(in), e, fg), f, size, out, LineClass::Interior,
-                    edges.silhouette);
+  if (detail < 2.0) {  // leaf-exact: the edges' lines, sorted into classes
+    mark_leaf_lines(in, edges, f, LineClass::Interior, true, out);
     return out;
   }
-  // The crown's lines are found at a working resolution where the detail is kWorkingDetail px,
-  // so renders of any size see the same shapes (and large ones cost less).
-  const Working w = working_images(in.depth, out.plant, wood, in.id, detail);
+  const InkWorking w = ink_working_images(in, out.plant, wood, detail);
   out.crown_scale = w.factor;
-  const double px = 1.0 / w.factor;  // working px per output px
-  const CrownShape shape = crown_shape(w.plant, detail * px);
-  const cv::Mat& crown = shape.body;
-  out.thin = edges.silhouette ? shape.thin : cv::Mat(w.plant.size(), CV_8UC1, cv::Scalar(0));
-  for (LineClass c : {LineClass::Silhouette, LineClass::Interior})
+  for (LineClass c : {LineClass::Silhouette, LineClass::Interior, LineClass::Wood})
     out.of[size_t(c)] = Cracks(w.plant.size());
-  if (edges.silhouette)
-    mark_cracks(out.of[size_t(LineClass::Silhouette)],
-                [c = crown.ptr<uint8_t>()](int a, int b) { return c[a] != c[b]; });
-  // Wood and interior lines keep off the outline, and off the centre lines of thin parts.
-  cv::Mat thin_band;
-  cv::dilate(out.thin, thin_band, disc(2.0 * std::max(1.0, 2.5 * scale * px) + 1.0));
-  const cv::Mat near_sil_w = near_boundary(crown, std::max(1.0, 2.5 * scale * px)) | thin_band;
-  if (p.wood.on) {
-    Flat fw;
-    fw.plant = flat_u8(w.plant, fw.keep[0]);
-    fw.wood = flat_u8(w.wood, fw.keep[1]);
-    fw.keep[2] = w.depth;
-    fw.depth = fw.keep[2].ptr<float>();
-    cv::Mat keep;
-    out.of[size_t(LineClass::Wood)] = Cracks(w.plant.size());
-    mark_wood(out.of[size_t(LineClass::Wood)], fw, flat_u8(near_sil_w, keep),
-              edges.depth_threshold);
-  }
-  if (p.interior.on && edges.depth) {
-    cv::Mat near_wood, keep;
-    // Where wood lines are drawn (wood in front), the crown's lines keep off; the parts'
-    // borders with wood behind foliage are interior lines.
-    cv::dilate(crack_pixels(out.of[size_t(LineClass::Wood)]), near_wood,
-               disc(2.0 * std::max(1.0, 1.5 * scale * px) + 1.0));
-    float near = 0, far = 0;
-    const cv::Mat median = median_depth(w.depth, w.plant, detail * px, near, far);
-    // Deussen & Strothotte's depth threshold, relative to the picture: detail / 256 of the
-    // plant's depth extent (4 % at the default 10 px).
-    const int levels = static_cast<int>(std::lround(253.0 * std::min(1.0, p.detail / 256.0)));
-    mark_interior(out.of[size_t(LineClass::Interior)], median, crown, w.parts,
-                  flat_u8(near_sil_w, keep), near_wood, levels);
-  }
+  const CrownMasks masks = mark_outline(w, edges, detail, scale, out);
+  if (p.wood.on) mark_wood_lines(w, masks, edges, out);
+  if (p.interior.on && edges.depth)
+    mark_interior_lines(in, w, masks, p, branch_cluster, scale, out);
   if (p.detail_lines.on) {
-    EdgeParams e = edges;
-    e.silhouette = false;
-    e.id = false;
-    e.normal = e.normal && !in.normal.empty();
-    cv::Mat fg;
     InkMarks leaf;
     for (Cracks& c : leaf.of)
       c = Cracks(size);
-    sort_edge_marks(find_edge_marks(edge_images(in), e, fg), f, size, leaf, LineClass::Detail,
-                    false);
+    mark_leaf_lines(in, edges, f, LineClass::Detail, false, leaf);
     out.of[size_t(LineClass::Detail)] = leaf.of[size_t(LineClass::Detail)];
   }
   return out;

@@ -24,6 +24,12 @@ struct InkMarks {
   // detail 5 px across): output px per working px (>= 1); the detail marks are at the output's.
   double crown_scale = 1.0;
   float near = 0, far = 0;  // the plant's depth range
+  // The crown field the silhouette is traced on (CrownField::field at the working resolution),
+  // for snapping the outline between pixels; empty at ink.detail < 2 px.
+  cv::Mat field;
+  // The front crown part's view depth at the working resolution (CrownParts::depth, 0 = none),
+  // for drawing each interior line on its nearer side; empty without surface samples.
+  cv::Mat part_depth;
 };
 
 // `scale`: reference_scale of the frame (detail and widths are in px at 1024 px).

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "core/scene/scene_length.h"
+#include "passes/crown_coverage.h"
 #include "passes/pass_common.h"
 #include "passes/watercolor_common.h"
 #include "passes/watercolor_layers.h"
@@ -26,12 +28,20 @@ using watercolor_internal::Layer;
 using watercolor_internal::LayerOut;
 using watercolor_internal::luminance;
 using watercolor_internal::paint_layer;
-using watercolor_internal::Paper;
+using watercolor_internal::paper_relief;
+using watercolor_internal::PaperField;
 using watercolor_internal::Shared;
 using watercolor_internal::srgb_tables;
 using watercolor_internal::SrgbTables;
 using watercolor_internal::to_display;
 using watercolor_internal::to_linear;
+
+// The washes' shapes from the scene: the parts' density smoothed by this share of the wash blur
+// (at least 2 px), a part where its coverage reaches kPartLevel; the wood under the leaves where
+// its own reaches kWoodLevel (the trunk and the main branches, not every twig inside the crown).
+constexpr float kPartSigma = 2.0f;
+constexpr float kPartLevel = 0.3f;
+constexpr float kWoodLevel = 0.6f;
 
 // Paper relief shading of the bare paper at paper_strength 1 (light grazing the grain).
 constexpr float kPaperRelief = 0.10f;
@@ -141,6 +151,7 @@ void finish_layers(std::vector<Layer>& layers, bool use_albedo, const SrgbTables
   for (Layer& L : layers) {
     const double n = double(L.count);
     L.mean_depth = float(L.sum_depth / n);
+    L.order_depth = L.mean_depth;
     const double var = std::max(0.0, L.sum_depth2 / n - (L.sum_depth / n) * (L.sum_depth / n));
     L.depth_spread = float(std::max(std::sqrt(var), 1e-4 * std::abs(L.sum_depth / n) + 1e-12));
     const double a = std::max(L.sum_alpha, 1e-9);
@@ -161,28 +172,51 @@ void finish_layers(std::vector<Layer>& layers, bool use_albedo, const SrgbTables
   }
 }
 
-// The layers back to front by mean depth (ties by id), so layer k is hidden only by layers > k;
-// s.label holds each pixel's rank.
+// `labels` (CV_32SC1 indices into `layers` or cluster ids, by `index`) as ranks; -1 where
+// there is no layer.
+template <class Index>
+cv::Mat ranks_of(const cv::Mat& labels, const std::vector<int>& rank, Index index) {
+  cv::Mat out(labels.size(), CV_32S);
+  for (int y = 0; y < labels.rows; ++y) {
+    const int32_t* a = labels.ptr<int32_t>(y);
+    int32_t* b = out.ptr<int32_t>(y);
+    for (int x = 0; x < labels.cols; ++x) {
+      const int i = index(a[x]);
+      b[x] = i < 0 ? -1 : rank[size_t(i)];
+    }
+  }
+  return out;
+}
+
+// The layers back to front by order_depth (ties by id), so layer k is hidden only by layers
+// > k; s.label holds each pixel's rank, from `first_label` (indices into `layers`) or, with
+// `parts`, from the scene's parts (cluster ids), s.seen then the id buffer's.
 std::vector<Layer> back_to_front(const std::vector<Layer>& layers, const cv::Mat& first_label,
-                                 Shared& s) {
+                                 const CrownParts* parts, Shared& s) {
   std::vector<int> order(layers.size());
   for (size_t i = 0; i < order.size(); ++i)
     order[i] = int(i);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     const Layer& A = layers[size_t(a)];
     const Layer& B = layers[size_t(b)];
-    if (A.mean_depth != B.mean_depth) return A.mean_depth > B.mean_depth;
+    if (A.order_depth != B.order_depth) return A.order_depth > B.order_depth;
     return A.id < B.id;
   });
   std::vector<int> rank(layers.size());
   for (size_t r = 0; r < order.size(); ++r)
     rank[size_t(order[r])] = int(r);
-  s.label.create(s.size, CV_32S);
-  for (int y = 0; y < s.size.height; ++y) {
-    const int32_t* a = first_label.ptr<int32_t>(y);
-    int32_t* b = s.label.ptr<int32_t>(y);
-    for (int x = 0; x < s.size.width; ++x)
-      b[x] = a[x] < 0 ? -1 : rank[size_t(a[x])];
+  const auto same = [](int32_t i) { return int(i); };
+  if (parts) {
+    std::unordered_map<int32_t, int> index_of;
+    for (size_t i = 0; i < layers.size(); ++i)
+      index_of[layers[i].id] = int(i);
+    s.label = ranks_of(parts->label, rank, [&](int32_t id) {
+      const auto it = index_of.find(id);
+      return it == index_of.end() ? -1 : it->second;
+    });
+    s.seen = ranks_of(first_label, rank, same);
+  } else {
+    s.label = ranks_of(first_label, rank, same);
   }
   std::vector<Layer> sorted(layers.size());
   for (size_t r = 0; r < order.size(); ++r)
@@ -190,22 +224,93 @@ std::vector<Layer> back_to_front(const std::vector<Layer>& layers, const cv::Mat
   return sorted;
 }
 
-// The wobble displacement: the gradient of the smoothed paper, scaled to an RMS length of
-// `wobble` px and bounded by three times that.
-void set_wobble(const Paper& paper, const WatercolorParams& p, double scale, Shared& s) {
-  s.wobble_x = paper.gx;
-  s.wobble_y = paper.gy;
-  const double rms =
-      std::sqrt((cv::sum(s.wobble_x.mul(s.wobble_x))[0] + cv::sum(s.wobble_y.mul(s.wobble_y))[0]) /
-                double(s.size.area()));
+// The washes' shapes from the scene (issue "Temporal coherence"): the crown's parts projected
+// from the surface samples (passes/crown_coverage.h), a little smoothed, so a wash moves with
+// its cluster instead of flickering with the leaves that land on pixel centres. Each layer is
+// ordered by its part's mean depth and its box grown to the part's region.
+CrownParts scene_parts(const WatercolorImages& in, const Shared& s, std::vector<Layer>& layers) {
+  // At the resolution the washes' masks are blurred at (paint_layer's), then up-sampled: the
+  // parts are smooth at that scale.
+  const int f = std::clamp(int(s.sigma / 2.0f), 1, 4);
+  Camera camera = in.camera;
+  camera.width = (s.size.width + f - 1) / f;
+  camera.height = (s.size.height + f - 1) / f;
+  CrownParts parts =
+      project_crown_parts(*in.samples, camera, kPartSigma * std::max(s.sigma, 2.0f) / float(f),
+                          kPartLevel, in.wood_cluster, kWoodLevel);
+  if (f > 1) {
+    const cv::Rect crop(0, 0, s.size.width, s.size.height);
+    cv::resize(parts.label, parts.label, {camera.width * f, camera.height * f}, 0, 0,
+               cv::INTER_NEAREST);
+    cv::resize(parts.depth, parts.depth, {camera.width * f, camera.height * f}, 0, 0,
+               cv::INTER_NEAREST);
+    parts.label = parts.label(crop).clone();
+    parts.depth = parts.depth(crop).clone();
+    for (CrownParts::Part& part : parts.order)
+      part.centre *= float(f);
+  }
+  std::unordered_map<int32_t, Layer*> layer_of;
+  for (Layer& L : layers)
+    layer_of[L.id] = &L;
+  for (const CrownParts::Part& part : parts.order) {
+    const auto it = layer_of.find(int32_t(part.cluster));
+    if (it == layer_of.end()) continue;
+    it->second->order_depth = part.depth;
+    // The wash's paper moves with the part, from a seeded place of its own.
+    uint64_t h = uint64_t(part.cluster) * 0x9E3779B97F4A7C15ull + 0x6A09E667F3BCC909ull;
+    h = splitmix64(h);
+    it->second->canvas = part.centre - cv::Point2f(float(h % 4096u), float((h >> 20) % 4096u));
+  }
+  for (int y = 0; y < parts.label.rows; ++y) {
+    const int32_t* l = parts.label.ptr<int32_t>(y);
+    for (int x = 0; x < parts.label.cols; ++x) {
+      if (l[x] == 0) continue;
+      const auto it = layer_of.find(l[x]);
+      if (it == layer_of.end()) continue;
+      Layer& L = *it->second;
+      L.x0 = std::min(L.x0, x), L.x1 = std::max(L.x1, x);
+      L.y0 = std::min(L.y0, y), L.y1 = std::max(L.y1, y);
+    }
+  }
+  return parts;
+}
+
+// The wobble: the slope of the paper, scaled so its RMS length over the frame (sampled every
+// 4 px) is `wobble` px, and bounded by three times that.
+void set_wobble(const PaperField& paper, const WatercolorParams& p, double scale, Shared& s) {
+  double sum = 0;
+  size_t n = 0;
+  for (int y = 2; y < s.size.height; y += 4)
+    for (int x = 2; x < s.size.width; x += 4) {
+      const cv::Vec2f g = paper.slope(float(x), float(y));
+      sum += double(g.dot(g));
+      ++n;
+    }
+  const double rms = n > 0 ? std::sqrt(sum / double(n)) : 0.0;
   const double target = p.wobble * scale;
-  const double k = rms > 1e-12 ? target / rms : 0.0;
-  const double limit = 3.0 * target;
-  s.wobble_x.convertTo(s.wobble_x, CV_32F, k);
-  s.wobble_y.convertTo(s.wobble_y, CV_32F, k);
-  cv::min(cv::max(s.wobble_x, -limit), limit, s.wobble_x);
-  cv::min(cv::max(s.wobble_y, -limit), limit, s.wobble_y);
-  s.max_wobble = float(limit);
+  s.paper = &paper;
+  s.wobble_gain = rms > 1e-12 ? float(target / rms) : 0.0f;
+  s.max_wobble = float(3.0 * target);
+}
+
+// The paper grain each pixel's pigment settles in: the front wash's own paper (its canvas), the
+// paper itself (`relief`) where there is no wash or the wash's paper is the paper's.
+cv::Mat granules(const PaperField& paper, const cv::Mat& relief, const Shared& s,
+                 const std::vector<Layer>& sorted) {
+  cv::Mat out = relief.clone();
+  cv::parallel_for_(cv::Range(0, s.size.height), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      const int32_t* lab = s.label.ptr<int32_t>(y);
+      float* o = out.ptr<float>(y);
+      for (int x = 0; x < s.size.width; ++x) {
+        if (lab[x] < 0) continue;
+        const cv::Point2f c = sorted[size_t(lab[x])].canvas;
+        if (c.x != 0.0f || c.y != 0.0f)
+          o[x] = paper.relief(float(x) + 0.5f - c.x, float(y) + 0.5f - c.y);
+      }
+    }
+  });
+  return out;
 }
 
 // Every layer painted, then glazed: the densities of transparent washes add (their
@@ -257,10 +362,11 @@ cv::Mat turbulence_map(const WatercolorImages& in, const glm::mat4& view_to_worl
   return turb;
 }
 
-// The glazed density over the paper, modulated by the paper's relief and the turbulence
-// (empty = none), encoded as opaque 8-bit BGRA sRGB.
-cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& turb,
-                 const WatercolorParams& p, const SrgbTables& srgb) {
+// The glazed density over the paper, its pigment modulated by the paper grain it settles in
+// (`grain`) and the turbulence (empty = none), the paper shaded by its relief; encoded as opaque
+// 8-bit BGRA sRGB.
+cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& grain,
+                 const cv::Mat& turb, const WatercolorParams& p, const SrgbTables& srgb) {
   cv::Mat out(density.size(), CV_8UC4);
   const float beta_paper = p.paper_strength, beta_turb = p.turbulence_strength;
   const glm::vec3 paper_color = glm::clamp(p.paper_color, 0.0f, 1.0f);
@@ -269,12 +375,13 @@ cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& tu
     for (int y = rows.start; y < rows.end; ++y) {
       const cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
       const float* pp = paper.ptr<float>(y);
+      const float* gr = grain.ptr<float>(y);
       const float* tb = turb.empty() ? nullptr : turb.ptr<float>(y);
       cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
       for (int x = 0; x < density.cols; ++x) {
         // Bousseau's density formula with d = 1 + beta (T - 0.5): pigment settles in the paper's
         // hollows (low relief = more pigment) and follows the turbulence.
-        const float d_paper = texture_density(1.0f - pp[x], beta_paper);
+        const float d_paper = texture_density(1.0f - gr[x], beta_paper);
         const float d_turb = tb ? texture_density(tb[x], beta_turb) : 1.0f;
         const float relief = 1.0f + kPaperRelief * beta_paper * (pp[x] - 0.5f);
         for (int ch = 0; ch < 3; ++ch) {
@@ -302,14 +409,17 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
   cv::Mat first_label;
   std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
   finish_layers(layers, use_albedo, *s.srgb);
-  const std::vector<Layer> sorted = back_to_front(layers, first_label, s);
-  const bool wobble = p.wobble > 0.0f && !sorted.empty();
-  const Paper paper = watercolor_internal::make_paper(s.size, p, wobble);
-  if (wobble) set_wobble(paper, p, scale, s);
+  CrownParts parts;
+  if (in.samples) parts = scene_parts(in, s, layers);
+  const std::vector<Layer> sorted =
+      back_to_front(layers, first_label, in.samples ? &parts : nullptr, s);
+  const PaperField paper(p, scale);
+  if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   const cv::Mat density = glaze(s, sorted);
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
   const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
-  return on_paper(density, paper.relief, turb, p, *s.srgb);
+  const cv::Mat relief = paper_relief(paper, s.size);
+  return on_paper(density, relief, granules(paper, relief, s, sorted), turb, p, *s.srgb);
 }
 
 void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
@@ -365,6 +475,7 @@ int add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
   std::vector<int> reads{res.color, res.id, res.depth};
   if (albedo && res.albedo >= 0) reads.push_back(res.albedo);
   if (turbulence) reads.push_back(res.position);
+  if (res.samples >= 0) reads.push_back(res.samples);
   const int out = graph.resource("watercolor");
   graph.add_pass("watercolor", reads, {out},
                  [res, view_to_world, p, albedo, turbulence, out](PassContext& ctx) {
@@ -374,6 +485,11 @@ int add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
                    in.depth = ctx.read<cv::Mat>(res.depth);
                    if (albedo && res.albedo >= 0) in.albedo = ctx.read<cv::Mat>(res.albedo);
                    if (turbulence) in.position = ctx.read<cv::Mat>(res.position);
+                   if (res.samples >= 0) {
+                     in.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(res.samples);
+                     in.camera = res.camera;
+                     in.wood_cluster = res.wood_cluster;
+                   }
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

@@ -37,11 +37,14 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "core/gl/camera.h"
 #include "core/graph/render_graph.h"
 #include "core/params.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
@@ -97,6 +100,13 @@ struct WatercolorImages {
   cv::Mat id;        // CV_32SC1, 0 background
   cv::Mat depth;     // CV_32FC1 linear view depth, 0 background
   cv::Mat position;  // CV_32FC3 view space; may be empty when turbulence_strength = 0
+  // The scene's surface samples (npr/surface_samples.h) and the frame's camera, or null: the
+  // washes' shapes and order then come from the id buffer and its depths.
+  std::shared_ptr<const SurfaceSamples> samples;
+  Camera camera;
+  // The cluster id of trunk and branches (0 = none): with samples, the wood's wash lies under
+  // the leaves' washes, as a painter lays the trunk under the crown.
+  uint32_t wood_cluster = 0;
 };
 
 // Bousseau et al. 2006, pigment density variation: modulation of a colour channel c in [0, 1]
@@ -129,6 +139,9 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p);
 
 struct WatercolorResources {
   int color = -1, albedo = -1, id = -1, depth = -1, position = -1;
+  int samples = -1;           // "surface-samples", or -1
+  Camera camera;              // the frame's, with samples
+  uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
 };
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only

@@ -19,6 +19,41 @@ constexpr float kUnderStrength = 0.35f;
 // cluster's depth) in front of its blurred surroundings shows all its detail, as far behind none.
 constexpr float kDetailBand = 0.3f;
 
+// Bilinear in a CV_32FC2 grid at (x, y) in grid cells (cell centres at integer + 0.5 - 0.5).
+cv::Vec2f sample2(const cv::Mat& m, float x, float y) {
+  x = std::clamp(x, 0.0f, float(m.cols - 1));
+  y = std::clamp(y, 0.0f, float(m.rows - 1));
+  const int x0 = std::min(int(x), m.cols - 1), y0 = std::min(int(y), m.rows - 1);
+  const int x1 = std::min(x0 + 1, m.cols - 1), y1 = std::min(y0 + 1, m.rows - 1);
+  const float ax = x - float(x0), ay = y - float(y0);
+  const cv::Vec2f a = m.at<cv::Vec2f>(y0, x0), b = m.at<cv::Vec2f>(y0, x1);
+  const cv::Vec2f c = m.at<cv::Vec2f>(y1, x0), d = m.at<cv::Vec2f>(y1, x1);
+  return (1 - ay) * ((1 - ax) * a + ax * b) + ay * ((1 - ax) * c + ax * d);
+}
+
+// The wobble's grid: cells of kWobbleCell px (or the small grid's, if coarser). The paper's slope
+// is smooth at that scale (its finest octave is two grains, 6 px at 1024 px), and evaluating it
+// at every pixel of every wash was most of the pass's time.
+constexpr int kWobbleCell = 2;
+
+// The wobble displacement (px) at the cells of `g` px over `roi`: the slope of the layer's
+// paper at the cell centre's canvas position, scaled and bounded.
+cv::Mat wobble_grid(const Shared& s, const Layer& layer, const cv::Rect& roi, int g) {
+  const int sw = (roi.width + g - 1) / g, sh = (roi.height + g - 1) / g;
+  cv::Mat out(sh, sw, CV_32FC2);
+  cv::parallel_for_(cv::Range(0, sh), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y)
+      for (int x = 0; x < sw; ++x) {
+        const float px = float(roi.x) + (float(x) + 0.5f) * float(g) - layer.canvas.x;
+        const float py = float(roi.y) + (float(y) + 0.5f) * float(g) - layer.canvas.y;
+        const cv::Vec2f g = s.paper->slope(px, py) * s.wobble_gain;
+        out.at<cv::Vec2f>(y, x) = {std::clamp(g[0], -s.max_wobble, s.max_wobble),
+                                   std::clamp(g[1], -s.max_wobble, s.max_wobble)};
+      }
+  });
+  return out;
+}
+
 }  // namespace
 
 LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
@@ -88,19 +123,26 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
     }
   }
 
-  // Full resolution: the mask looked up at a position displaced along the paper gradient
-  // (Bousseau's wobbling), bilinear from the small grid.
+  // Full resolution: the mask looked up at a position displaced along the slope of the wash's
+  // own paper (Bousseau's wobbling), both bilinear from their grids.
   const float inv_f = 1.0f / float(f);
   const float half = 0.5f * inv_f - 0.5f;  // pixel centre x + 0.5 maps to (x + 0.5) / f - 0.5
+  const int g = std::max(f, kWobbleCell);
+  const cv::Mat wobble = s.wobble_gain > 0.0f ? wobble_grid(s, layer, roi, g) : cv::Mat();
   cv::Mat mask(h, w, CV_32F);
   for (int y = 0; y < h; ++y) {
-    const float* dx = s.wobble_x.empty() ? nullptr : s.wobble_x.ptr<float>(roi.y + y) + roi.x;
-    const float* dy = s.wobble_y.empty() ? nullptr : s.wobble_y.ptr<float>(roi.y + y) + roi.x;
     float* m = mask.ptr<float>(y);
     const float sy = float(y) * inv_f + half;
     for (int x = 0; x < w; ++x) {
       const float sx = float(x) * inv_f + half;
-      m[x] = dx ? sample(mask_s, sx + dx[x] * inv_f, sy + dy[x] * inv_f) : sample(mask_s, sx, sy);
+      if (wobble.empty()) {
+        m[x] = sample(mask_s, sx, sy);
+        continue;
+      }
+      // Pixel centre x + 0.5 is at (x + 0.5) / g - 0.5 in the wobble's grid.
+      const cv::Vec2f d =
+          sample2(wobble, (float(x) + 0.5f) / float(g) - 0.5f, (float(y) + 0.5f) / float(g) - 0.5f);
+      m[x] = sample(mask_s, sx + d[0] * inv_f, sy + d[1] * inv_f);
     }
   }
 
@@ -113,7 +155,8 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
     const float* m = mask.ptr<float>(y);
     const float* mu = mask.ptr<float>(std::max(y - 1, 0));
     const float* md = mask.ptr<float>(std::min(y + 1, h - 1));
-    const int32_t* lab = s.label.ptr<int32_t>(roi.y + y) + roi.x;
+    const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
+    const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
     const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
     const float sy = float(y) * inv_f + half;

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "passes/watercolor_common.h"
+#include "passes/watercolor_textures.h"
 
 namespace sylva::watercolor_internal {
 
@@ -21,7 +22,12 @@ struct Layer {
   int32_t id = 0;
   int count = 0;
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive bounding box
-  double sum_color[3] = {0, 0, 0};       // linear, premultiplied by coverage
+  float order_depth = 0;                 // what the layers are sorted by (back to front)
+  // Where the wash's own paper lies: canvas position = image position - canvas (px). With
+  // surface samples the cluster's projected centre less a seeded shift, so the wash carries
+  // its grain and wobble as it moves; else 0 (the paper stays put under every wash).
+  cv::Point2f canvas{0.0f, 0.0f};
+  double sum_color[3] = {0, 0, 0};  // linear, premultiplied by coverage
   double sum_alpha = 0;
   double sum_pigment[3] = {0, 0, 0};  // albedo (linear, premultiplied) when it is the pigment
   double sum_pigment_alpha = 0;
@@ -40,14 +46,20 @@ struct LayerOut {
 
 struct Shared {
   cv::Size size;
-  cv::Mat label;      // CV_32SC1: index of the layer (back to front), -1 background
+  // CV_32SC1: index of the layer (back to front), -1 background: the washes' shapes. From the
+  // scene's crown parts when there are surface samples, else the id buffer's.
+  cv::Mat label;
+  // CV_32SC1: the id buffer's layer index, where it differs from `label` (from the scene):
+  // which layer's leaf a pixel shows, for the leaf detail. Empty: `label`.
+  cv::Mat seen;
   cv::Mat luminance;  // CV_32FC1 display luminance of the un-premultiplied shaded colour
   cv::Mat depth;
-  cv::Mat wobble_x, wobble_y;  // CV_32FC1 displacement in px (empty = none)
-  float max_wobble = 0;        // px, bound of |wobble_x|, |wobble_y|
-  float sigma = 0;             // px
-  float half_width = 0.5f;     // of the threshold smoothstep
-  float edge_gain = 0;         // d - 1 at the steepest edge, <= 1 (d = 2: twice the pigment)
+  const PaperField* paper = nullptr;  // the paper the washes wobble along
+  float wobble_gain = 0;              // px of displacement per unit of paper slope (0 = none)
+  float max_wobble = 0;               // px, bound of each component of the displacement
+  float sigma = 0;                    // px
+  float half_width = 0.5f;            // of the threshold smoothstep
+  float edge_gain = 0;                // d - 1 at the steepest edge, <= 1 (d = 2: twice the pigment)
   float detail = 0;
   const SrgbTables* srgb = nullptr;
 };

@@ -85,52 +85,33 @@ cv::Mat normalise_texture(const cv::Mat& t) {
   return out;
 }
 
-// Value-noise fBm: the coarser octaves are summed on the finest octave's lattice (one cell =
-// one grain), then one cubic up-sampling takes the sum to pixels; the gradient comes from the
-// lattice without the finest octave (the smoothed paper), up-sampled linearly.
-Paper generated_paper(const cv::Size& size, const WatercolorParams& p, bool gradient) {
-  const double period = std::max(1.0, p.grain * reference_scale(size));
-  // Fine grain dominates, coarser octaves give the mottled sizing of real paper.
-  constexpr int kOctaves = 5;
-  constexpr std::array<float, kOctaves> kAmplitude{1.0f, 0.8f, 0.45f, 0.3f, 0.25f};
-  const int gw = int(std::ceil(size.width / period)) + 4;
-  const int gh = int(std::ceil(size.height / period)) + 4;
-  auto random_grid = [&](int w, int h, int octave) {
-    cv::Mat grid(h, w, CV_32F);
-    cv::RNG rng(uint64_t(uint32_t(p.seed)) * 7919u + uint64_t(octave) * 104729u + 1u);
-    rng.fill(grid, cv::RNG::UNIFORM, 0.0f, 1.0f);
-    return grid;
-  };
-  cv::Mat coarse(gh, gw, CV_32F, cv::Scalar(0));
-  for (int o = 1; o < kOctaves; ++o) {
-    const int cell = 1 << o;
-    const int w = gw / cell + 4, h = gh / cell + 4;
-    cv::Mat up;
-    cv::resize(random_grid(w, h, o), up, cv::Size(w * cell, h * cell), 0, 0, cv::INTER_CUBIC);
-    // Skip the first cells, where the interpolation sees the border.
-    coarse += kAmplitude[size_t(o)] * up(cv::Rect(cell, cell, gw, gh));
-  }
-  const cv::Mat lattice = coarse + kAmplitude[0] * random_grid(gw, gh, 0);
-  const int off = int(std::floor(period));
-  const cv::Size full(int(std::ceil(gw * period)), int(std::ceil(gh * period)));
-  const cv::Rect crop(off, off, size.width, size.height);
-  Paper out;
-  cv::Mat up;
-  cv::resize(lattice, up, full, 0, 0, cv::INTER_CUBIC);
-  out.relief = normalise_texture(up(crop));
-  if (gradient) {
-    cv::Mat gx, gy;
-    cv::Sobel(coarse, gx, CV_32F, 1, 0, 3, 0.125, 0, cv::BORDER_REPLICATE);
-    cv::Sobel(coarse, gy, CV_32F, 0, 1, 3, 0.125, 0, cv::BORDER_REPLICATE);
-    cv::resize(gx, up, full, 0, 0, cv::INTER_LINEAR);
-    out.gx = up(crop).clone();
-    cv::resize(gy, up, full, 0, 0, cv::INTER_LINEAR);
-    out.gy = up(crop).clone();
-  }
-  return out;
+// Fine grain dominates, coarser octaves give the mottled sizing of real paper.
+constexpr int kOctaves = 5;
+constexpr std::array<float, kOctaves> kAmplitude{1.0f, 0.8f, 0.45f, 0.3f, 0.25f};
+
+float value_noise2(float x, float y, uint32_t seed) {
+  const float fx = std::floor(x), fy = std::floor(y);
+  const int32_t ix = int32_t(fx), iy = int32_t(fy);
+  const float u = fade(x - fx), v = fade(y - fy);
+  auto lerp = [](float a, float b, float t) { return a + (b - a) * t; };
+  return lerp(lerp(lattice(ix, iy, 0, seed), lattice(ix + 1, iy, 0, seed), u),
+              lerp(lattice(ix, iy + 1, 0, seed), lattice(ix + 1, iy + 1, 0, seed), u), v);
 }
 
-cv::Mat loaded_paper(const cv::Size& size, const WatercolorParams& p) {
+// The gradient of value_noise2 at (x, y), analytically (the quintic fade's derivative).
+cv::Vec2f value_noise2_gradient(float x, float y, uint32_t seed) {
+  const float fx = std::floor(x), fy = std::floor(y);
+  const int32_t ix = int32_t(fx), iy = int32_t(fy);
+  const float tx = x - fx, ty = y - fy;
+  const float u = fade(tx), v = fade(ty);
+  auto dfade = [](float t) { return 30.0f * t * t * (t * (t - 2.0f) + 1.0f); };
+  const float a = lattice(ix, iy, 0, seed), b = lattice(ix + 1, iy, 0, seed);
+  const float c = lattice(ix, iy + 1, 0, seed), d = lattice(ix + 1, iy + 1, 0, seed);
+  return {dfade(tx) * ((b - a) + (a - b - c + d) * v), dfade(ty) * ((c - a) + (a - b - c + d) * u)};
+}
+
+// The grey-scale paper image at 1 image px per px at 1024 px, in [0, 1].
+cv::Mat loaded_tile(const WatercolorParams& p, double scale) {
   cv::Mat img = read_image(p.paper);  // InputError(path, ...) when unreadable
   if (img.empty()) throw InputError(p.paper, "watercolor.paper: the image is empty");
   cv::Mat grey;
@@ -146,37 +127,117 @@ cv::Mat loaded_paper(const cv::Size& size, const WatercolorParams& p) {
   cv::Mat f;
   const double depth_max = grey.depth() == CV_8U ? 255.0 : grey.depth() == CV_16U ? 65535.0 : 1.0;
   grey.convertTo(f, CV_32F, 1.0 / depth_max);
-  const double scale = reference_scale(size);
   if (std::abs(scale - 1.0) > 1e-9) {
     const cv::Size scaled(std::max(1, int(std::lround(f.cols * scale))),
                           std::max(1, int(std::lround(f.rows * scale))));
     cv::resize(f, f, scaled, 0, 0, scale < 1.0 ? cv::INTER_AREA : cv::INTER_CUBIC);
   }
-  const int nx = (size.width + f.cols - 1) / f.cols, ny = (size.height + f.rows - 1) / f.rows;
-  cv::Mat tiled;
-  cv::repeat(f, ny, nx, tiled);
-  return normalise_texture(tiled(cv::Rect(0, 0, size.width, size.height)));
+  return normalise_texture(f);
+}
+
+// Bilinear in a tiled image at continuous position (x, y).
+float tiled(const cv::Mat& m, float x, float y) {
+  const float fx = x - 0.5f, fy = y - 0.5f;
+  const float x0 = std::floor(fx), y0 = std::floor(fy);
+  const float ax = fx - x0, ay = fy - y0;
+  auto at = [&m](float xx, float yy) {
+    const int i = int(std::fmod(std::fmod(xx, float(m.cols)) + float(m.cols), float(m.cols)));
+    const int j = int(std::fmod(std::fmod(yy, float(m.rows)) + float(m.rows), float(m.rows)));
+    return m.at<float>(std::min(j, m.rows - 1), std::min(i, m.cols - 1));
+  };
+  return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) +
+         ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
 }
 
 }  // namespace
 
-Paper make_paper(const cv::Size& size, const WatercolorParams& p, bool gradient) {
-  SYLVA_CHECK(size.width > 0 && size.height > 0, "watercolor_paper: empty size");
-  if (p.paper == "generated") return generated_paper(size, p, gradient);
-  Paper out;
-  out.relief = loaded_paper(size, p);
-  if (gradient) {
-    const cv::Mat smooth = blur(out.relief, float(0.75 * p.grain * reference_scale(size)));
-    cv::Sobel(smooth, out.gx, CV_32F, 1, 0, 3, 0.125, 0, cv::BORDER_REPLICATE);
-    cv::Sobel(smooth, out.gy, CV_32F, 0, 1, 3, 0.125, 0, cv::BORDER_REPLICATE);
+PaperField::PaperField(const WatercolorParams& p, double scale)
+    : m_period(std::max(1.0, p.grain * scale)), m_seed(uint32_t(p.seed) * 7919u + 1u) {
+  if (p.paper != "generated") {
+    m_tile = loaded_tile(p, scale);
+    // The slope of the tile blurred, wrapping around its edges (padded by a wrapped border,
+    // since OpenCV's filters do not wrap).
+    const double sigma = std::max(0.3, 0.75 * p.grain * scale);
+    const int pad = int(std::ceil(3.0 * sigma)) + 2;
+    cv::Mat padded, smooth, gx, gy;
+    cv::copyMakeBorder(m_tile, padded, pad, pad, pad, pad, cv::BORDER_WRAP);
+    cv::GaussianBlur(padded, smooth, {0, 0}, sigma);
+    cv::Sobel(smooth, gx, CV_32F, 1, 0, 3, 0.125);
+    cv::Sobel(smooth, gy, CV_32F, 0, 1, 3, 0.125);
+    const cv::Rect tile(pad, pad, m_tile.cols, m_tile.rows);
+    m_gx = gx(tile).clone();
+    m_gy = gy(tile).clone();
+    return;
   }
+  // The sum's mean and spread, measured once on a fixed grid of 64 x 64 points spread over
+  // many lattice cells, so the relief has about kTextureStd whatever the grain.
+  double sum = 0, sum2 = 0;
+  constexpr int kGrid = 64;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const double v = raw(float((i + 0.37) * 5.3 * m_period), float((j + 0.61) * 5.3 * m_period));
+      sum += v;
+      sum2 += v * v;
+    }
+  const double n = kGrid * kGrid, mean = sum / n;
+  const double sd = std::sqrt(std::max(1e-12, sum2 / n - mean * mean));
+  m_mean = float(mean);
+  m_gain = float(kTextureStd / sd);
+}
+
+float PaperField::coarse(float x, float y) const {
+  float sum = 0.0f;
+  for (int o = 1; o < kOctaves; ++o) {
+    const float period = float(m_period) * float(1 << o);
+    sum +=
+        kAmplitude[size_t(o)] * value_noise2(x / period, y / period, m_seed + uint32_t(o) * 101u);
+  }
+  return sum;
+}
+
+float PaperField::raw(float x, float y) const {
+  const float fine = kAmplitude[0] * value_noise2(x / float(m_period), y / float(m_period), m_seed);
+  float total = 0.0f;
+  for (float a : kAmplitude)
+    total += a;
+  return (fine + coarse(x, y)) / total;
+}
+
+float PaperField::relief(float x, float y) const {
+  if (!m_tile.empty()) return tiled(m_tile, x, y);
+  return std::clamp(0.5f + (raw(x, y) - m_mean) * m_gain, 0.0f, 1.0f);
+}
+
+cv::Vec2f PaperField::slope(float x, float y) const {
+  if (!m_tile.empty()) return {tiled(m_gx, x, y), tiled(m_gy, x, y)};
+  cv::Vec2f g(0.0f, 0.0f);
+  for (int o = 1; o < kOctaves; ++o) {
+    const float period = float(m_period) * float(1 << o);
+    g += kAmplitude[size_t(o)] / period *
+         value_noise2_gradient(x / period, y / period, m_seed + uint32_t(o) * 101u);
+  }
+  return g;
+}
+
+cv::Mat paper_relief(const PaperField& paper, const cv::Size& size) {
+  SYLVA_CHECK(size.width > 0 && size.height > 0, "watercolor_paper: empty size");
+  cv::Mat out(size, CV_32F);
+  cv::parallel_for_(cv::Range(0, size.height), [&](const cv::Range& rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      float* o = out.ptr<float>(y);
+      for (int x = 0; x < size.width; ++x)
+        o[x] = paper.relief(float(x) + 0.5f, float(y) + 0.5f);
+    }
+  });
   return out;
 }
 
 }  // namespace watercolor_internal
 
 cv::Mat watercolor_paper(const cv::Size& size, const WatercolorParams& p) {
-  return watercolor_internal::make_paper(size, p, false).relief;
+  SYLVA_CHECK(size.width > 0 && size.height > 0, "watercolor_paper: empty size");
+  return watercolor_internal::paper_relief(
+      watercolor_internal::PaperField(p, reference_scale(size)), size);
 }
 
 cv::Mat watercolor_turbulence(const cv::Mat& position, const cv::Mat& depth,

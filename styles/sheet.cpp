@@ -1,11 +1,14 @@
 #include "styles/sheet.h"
 
+#include "core/gl/instance_draws.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
 
 #include "core/error.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
@@ -163,6 +166,9 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
   std::map<std::string, GBufferHandles> rasters;  // raster key -> its targets
   std::map<std::string, RasterRequest> requests;  // raster key -> its request
   SheetPlan plan;
+  // Read by the line styles only (compile() culls it otherwise).
+  const int samples =
+      scene.scene ? add_surface_samples_pass(graph, scene.scene, scene.samples_memo) : -1;
   for (size_t i = 0; i < styles.size(); ++i) {
     const Style& style = *styles[i];
     RasterSetup setup = scene.raster;
@@ -220,8 +226,11 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.rasterizer = setup.rasterizer;
     context.camera = setup.camera;
     context.scene_sphere = scene.scene_sphere;
+    if (scene.scene && scene.scene->instanced())
+      context.shadow_sphere = visible_instances_sphere(*scene.scene, setup.camera);
     context.branch_cluster = scene.branch_cluster;
     context.blobs = scene.blobs;
+    context.surface_samples = samples;
     auto s = scope("cell-" + std::to_string(i));
     const StyleOutput out = style.build(graph, rasters[rkey], context);
     // Vector output needs the strokes only: the raster ink and its composite are culled.

@@ -13,7 +13,8 @@
 #include "styles/style.h"
 
 namespace sylva {
-struct AoMemo;  // npr/ao_pass.h
+struct AoMemo;             // npr/ao_pass.h
+struct SurfaceSampleMemo;  // npr/surface_samples.h
 }  // namespace sylva
 
 namespace sylva {
@@ -68,6 +69,9 @@ struct SheetScene {
   // Set for many frames of one scene (memoize_preprocessing): the AO shells and the ray
   // tracer's BVH are computed once and shared. Null: per graph.
   std::shared_ptr<AoMemo> ao_memo;
+  // Set for many frames of one scene: the surface samples of the ink lines' crown coverage
+  // are made once. Null: per graph.
+  std::shared_ptr<SurfaceSampleMemo> samples_memo;
 };
 
 // Every field for `scene` (outlives the sheet) seen through `raster`; the preprocessing of

@@ -38,7 +38,9 @@ int add_key_shadow_pass(RenderGraph& graph, const StyleContext& context, int siz
   }
   RasterSetup rs;
   rs.rasterizer = context.rasterizer;
-  rs.camera = make_light_camera(context.scene_sphere, v, point, size);
+  rs.camera = context.shadow_sphere.empty()
+                  ? make_light_camera(context.scene_sphere, v, point, size)
+                  : make_light_camera(context.shadow_sphere, v, point, size, context.scene_sphere);
   rs.lighting = context.lighting;
   const GBufferHandles g = add_raster_pass(graph, rs);
   const glm::mat4 view = rs.camera.view, proj = rs.camera.proj;
@@ -76,6 +78,8 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
   r.depth = gbuffer.depth;
   r.normal = gbuffer.normal;
   r.id = gbuffer.id;
+  r.samples = context.surface_samples;
+  r.camera = context.camera;
   int strokes = add_ink_lines_pass(graph, r, params.edges, params.lines, context.branch_cluster);
   if (params.pen.enabled()) {
     validate_pen_params(params.pen);
@@ -83,9 +87,11 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
     t.position = gbuffer.position;
     t.id = gbuffer.id;
     t.color = gbuffer.color;
+    t.samples = context.surface_samples;
     ToneView view;
     view.view = context.view;
     view.proj = context.camera.proj;
+    view.ortho = context.camera.ortho;
     view.units_per_px = units_per_px(context.camera, context.scene_sphere);
     const int tone = add_tone_pass(graph, t, view, params.pen, params.lines.detail);
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
@@ -108,6 +114,9 @@ StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
   r.id = gbuffer.id;
   r.depth = gbuffer.depth;
   r.position = gbuffer.position;
+  r.samples = context.surface_samples;
+  r.camera = context.camera;
+  r.wood_cluster = context.branch_cluster;
   return {add_watercolor_pass(graph, r, glm::inverse(context.view), p)};
 }
 
@@ -132,7 +141,10 @@ StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
                                              ctx.read<cv::Mat>(id))));
                    });
   } else {
-    outlines = add_blob_outlines_pass(graph, gbuffer.id, gbuffer.depth, context.branch_cluster, p);
+    // "scene" without surface samples (a graph built without a scene) outlines what is seen.
+    const int samples = p.outlines == "scene" ? context.surface_samples : -1;
+    outlines = add_blob_outlines_pass(graph, gbuffer.id, gbuffer.depth, context.branch_cluster, p,
+                                      samples, context.camera);
   }
   BlobResources r;
   r.color = gbuffer.color;

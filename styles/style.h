@@ -29,6 +29,10 @@ struct StyleContext {
   // scene and a sphere around it. May be null/empty when no such style is built.
   Rasterizer* rasterizer = nullptr;
   Sphere scene_sphere;
+  // What the key light's shadow map covers: in a scene of many plants the instances the camera
+  // sees (visible_instances_sphere), the whole scene_sphere still casting into it; empty = the
+  // scene_sphere (a flat scene).
+  Sphere shadow_sphere;
   Camera camera;  // the frame's camera (blobs.outlines = alone renders it once per cluster)
   // The cluster id of trunk and branches (Scene::branch_cluster_id), 0 = none: the blobs
   // style paints them as its base layer rather than as a blob.
@@ -36,6 +40,9 @@ struct StyleContext {
   // The frame's blobs when an animation interpolates them between keyframes
   // (npr/blob_keyframes.h); null = shrink-wrap this frame's own clusters.
   std::shared_ptr<const BlobSet> blobs;
+  // The scene-level "surface-samples" node (npr/surface_samples.h) the ink lines' crown
+  // coverage is projected from; -1 = none (the outline follows the raster's coverage).
+  int surface_samples = -1;
 };
 
 // What a style adds to the graph: its final image (CV_8UC4 BGRA sRGB) and, for styles made of

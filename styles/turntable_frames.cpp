@@ -2,11 +2,13 @@
 
 #include "core/graph/render_graph.h"
 #include "npr/ao_pass.h"
+#include "npr/surface_samples.h"
 
 namespace sylva {
 
 void memoize_preprocessing(SheetScene& scene, bool quiet) {
   scene.ao_memo = std::make_shared<AoMemo>();
+  scene.samples_memo = std::make_shared<SurfaceSampleMemo>();
   auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
   scene.foliage = [f = scene.foliage, memo, quiet](const FoliageSettings& s) {
     IlluminationSetup setup = f(s);
@@ -34,7 +36,10 @@ TurntableRenderer::TurntableRenderer(const SheetScene& scene, const Style& style
   m_keyframes = std::make_unique<BlobKeyframes>(
       path.frames, keyframe_every,
       [setup = scene.raster, centre = scene.scene_sphere.centre, path, bp,
-       branch = scene.branch_cluster](int f) {
+       branch = scene.branch_cluster, world = scene.scene, memo = scene.samples_memo](int f) {
+        if (bp.outlines == "scene" && world != nullptr)
+          return scene_blob_outlines(*coverage_samples(*world, memo.get()),
+                                     turntable_camera(setup.camera, centre, path, f), branch, bp);
         return turntable_blob_outlines(setup, centre, path, f, bp, branch);
       },
       keyframe_cache, signature);

@@ -42,7 +42,25 @@ struct AoShading {
   // ground_plane_occlusion, +Y up), subtracted from Eq. 8's V. ground_plane false: no plane.
   bool ground_plane = false;
   float ground_y = 0.0f;  // the plane's height, scene units, finite
+
+  // A scene of many plants (Shells; the shell and crown fields above are then unused, the
+  // grass and ground ones still apply): each plant's own shells in its own space, which a
+  // foliage fragment evaluates in its instance's plant space (so every instance darkens as its
+  // plant alone does), and per instance its crown sphere in world space; a fragment that is
+  // not foliage is occluded by every crown within kAoCrownReach radii of it, their solid
+  // angles added (Eq. 7-8 summed over the crowns). Empty: a flat scene.
+  struct PlantShells {
+    float alpha_rho = 0.0f;  // per plant-space unit cubed, >= 0
+    std::vector<glm::vec3> centres, anchors;
+    std::vector<glm::mat3> inverse, transpose;
+    std::vector<float> volume_scale;
+  };
+  std::vector<PlantShells> plant_shells;  // per plant (no shells: a plant without foliage)
+  std::vector<glm::vec4> crowns;          // per instance: world centre, radius (<= 0: none)
 };
 inline constexpr int kMaxAoShells = 64;
+// A crown farther than this many of its radii from a fragment is left out of the sum: its
+// solid angle is then below 1 / 128 of the hemisphere.
+inline constexpr float kAoCrownReach = 8.0f;
 
 }  // namespace sylva

@@ -79,8 +79,33 @@ Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int wi
   return cam;
 }
 
-Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point,
-                         int size) {
+Camera make_file_camera(const SceneCamera& file, const Sphere& sphere, int width, int height) {
+  validate(OrbitParams{}, width, height);
+  Camera cam;
+  cam.width = width;
+  cam.height = height;
+  cam.ortho = file.orthographic;
+  cam.view = glm::inverse(file.to_world);
+  cam.eye = glm::vec3(file.to_world[3]);
+  cam.near_plane = file.znear;
+  cam.far_plane = file.zfar;
+  if (cam.far_plane <= 0.0f) {
+    const float reach =
+        sphere.empty() ? 0.0f : glm::length(sphere.centre - cam.eye) + sphere.radius;
+    cam.far_plane = std::max(reach * kMargin, 2.0f * cam.near_plane);
+  }
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (cam.ortho) {
+    const float half_h = file.ymag, half_w = half_h * aspect;
+    cam.proj = glm::ortho(-half_w, half_w, -half_h, half_h, cam.near_plane, cam.far_plane);
+  } else {
+    cam.proj = glm::perspective(file.yfov, aspect, cam.near_plane, cam.far_plane);
+  }
+  return cam;
+}
+
+Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size,
+                         const Sphere& casters) {
   SYLVA_CHECK(size >= 1 && size <= kMaxImageSide, "make_light_camera: bad size");
   SYLVA_CHECK(!sphere.empty() && std::isfinite(sphere.radius), "make_light_camera: no sphere");
   const glm::vec3 centre = sphere.centre;
@@ -99,11 +124,16 @@ Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bo
     dir = toward_light / len;
     distance = 2.0f * radius;
   }
+  // How far toward the light the casters reach beyond the centre.
+  float reach = radius;
+  if (!point && !casters.empty())
+    reach = std::max(reach, glm::dot(casters.centre - centre, dir) + casters.radius * kMargin);
+  if (!point) distance = std::max(distance, reach + radius);
   const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
   cam.eye = centre + distance * dir;
   cam.view = glm::lookAt(cam.eye, centre, up);
   cam.far_plane = distance + radius;
-  cam.near_plane = std::max(distance - radius, cam.far_plane * 1e-3f);
+  cam.near_plane = std::max(distance - (point ? radius : reach), cam.far_plane * 1e-3f);
   if (point) {
     cam.ortho = false;
     const float half = distance > radius ? std::asin(radius / distance) : glm::radians(75.0f);

@@ -35,11 +35,23 @@ struct Camera {
 Camera make_orbit_camera(const Sphere& sphere, const OrbitParams& params, int width, int height);
 Camera make_orbit_camera(const Bounds& bounds, const OrbitParams& params, int width, int height);
 
+// A camera stored in the file (Scene::cameras) for a width x height image: its view is the
+// inverse of its node's rigid transform; perspective keeps the vertical field of view and
+// orthographic the half height ymag, the width following the image's aspect ratio (the file's
+// aspect ratio is not used); near and far are the file's znear and zfar, and an infinite far
+// (zfar 0) becomes the far side of `sphere` (the scene's framing sphere) seen from the eye,
+// at least 2 x znear. Throws InputError("--size", ...) for a size outside [1, 16384].
+Camera make_file_camera(const SceneCamera& camera, const Sphere& sphere, int width, int height);
+
 // A square camera seeing the whole sphere from a light, for shadow maps: orthographic along
 // `toward_light` (world direction from the scene toward a directional light, any length
 // > 0), or, when `point` is set, perspective from the world position `toward_light` aimed at
 // the centre (a light inside the sphere gets a 150 degree field of view). Depth hugs the
-// sphere. size in [1, 16384] pixels.
-Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size);
+// sphere. size in [1, 16384] pixels. For a directional light, a non-empty `casters` sphere
+// (the whole scene, when `sphere` holds only what the picture shows) moves the near plane
+// toward the light until every caster in it is in front of the camera, so what stands
+// outside `sphere` still casts its shadow into it.
+Camera make_light_camera(const Sphere& sphere, const glm::vec3& toward_light, bool point, int size,
+                         const Sphere& casters = {});
 
 }  // namespace sylva

@@ -216,4 +216,42 @@ void release_mesh(GpuMesh& mesh) {
   mesh.buffers.clear();
 }
 
+glm::vec3 texture_mean(const Texture& t) {
+  glm::dvec3 sum(0.0), all(0.0);
+  size_t n = 0;
+  const size_t count = size_t(t.width) * size_t(t.height);
+  for (size_t i = 0; i < count && 4 * i + 3 < t.rgba.size(); ++i) {
+    glm::dvec3 c;
+    for (int k = 0; k < 3; ++k) {
+      const double v = t.rgba[4 * i + k] / 255.0;
+      c[k] = srgb_to_linear(float(v));
+    }
+    all += c;
+    if (t.rgba[4 * i + 3] >= 128) sum += c, ++n;
+  }
+  if (n > 0) return glm::vec3(sum / double(n));
+  return count > 0 ? glm::vec3(all / double(count)) : glm::vec3(1.0f);
+}
+
+GLuint make_target_texture(GLenum internal_format, int width, int height) {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return id;
+}
+
+// Meshes without a material: grey, and double-sided because untextured plant meshes
+// (OBJ/PLY leaves) rarely have consistent winding.
+Material default_material() {
+  Material m;
+  m.name = "default";
+  m.base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  m.double_sided = true;
+  return m;
+}
+
 }  // namespace sylva

@@ -19,7 +19,8 @@ struct GpuMesh {
   std::vector<GLuint> buffers;
   GLsizei index_count = 0;
   int material = -1;
-  uint32_t object_id = 0;
+  uint32_t object_id = 0;    // the id buffer's object id (instanced: index in its plant + 1)
+  uint32_t scene_index = 0;  // index into Scene::meshes
   bool has_normals = false;
   size_t vertex_count = 0;
   GLuint normal_buffer = 0;  // replaceable (replace_shading); 0 = none
@@ -40,5 +41,15 @@ void replace_shading(GpuMesh& mesh, const std::vector<glm::vec3>& normals,
 
 // Throws InputError when the pixel data does not match the size.
 GLuint upload_texture(const Texture& tex);
+
+// The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
+// transparent surround); all texels when none is.
+glm::vec3 texture_mean(const Texture& t);
+
+// An immutable GL_NEAREST-filtered 2D texture of one level, for a framebuffer attachment.
+GLuint make_target_texture(GLenum internal_format, int width, int height);
+
+// What a mesh without a material is drawn with.
+Material default_material();
 
 }  // namespace sylva

@@ -1,5 +1,6 @@
 #include "core/gl/rasterizer.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -9,15 +10,20 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/gl/ao_buffers.h"
 #include "core/gl/downsample.h"
 #include "core/gl/gpu_scene.h"
+#include "core/gl/instance_draws.h"
+#include "core/gl/lod_meshes.h"
+#include "core/gl/raster_uniforms.h"
 #include "core/gl/shaders.h"
 
 namespace sylva {
 
 namespace {
 
-constexpr GLsizei kDrawChunkIndices = 3 * 32768;  // indices per draw call (32k triangles)
+constexpr GLsizei kDrawChunkIndices = 3 * 32768;      // indices per draw call (32k triangles)
+constexpr size_t kQueuedTriangles = size_t(1) << 17;  // instanced triangles per glFinish
 constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
@@ -48,48 +54,8 @@ constexpr SlotFormat kSlotFormats[kSlots] = {
 static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka &&
               kAllTargets[6] == Target::Albedo && kAllTargets[7] == Target::Ao);
 
-// The mean linear colour of the texels with alpha >= 0.5 (a leaf card's leaf, not its
-// transparent surround); all texels when none is.
-glm::vec3 texture_mean(const Texture& t) {
-  glm::dvec3 sum(0.0), all(0.0);
-  size_t n = 0;
-  const size_t count = size_t(t.width) * size_t(t.height);
-  for (size_t i = 0; i < count && 4 * i + 3 < t.rgba.size(); ++i) {
-    glm::dvec3 c;
-    for (int k = 0; k < 3; ++k) {
-      const double v = t.rgba[4 * i + k] / 255.0;
-      c[k] = srgb_to_linear(float(v));
-    }
-    all += c;
-    if (t.rgba[4 * i + 3] >= 128) sum += c, ++n;
-  }
-  if (n > 0) return glm::vec3(sum / double(n));
-  return count > 0 ? glm::vec3(all / double(count)) : glm::vec3(1.0f);
-}
-
 float srgb_encode(float c) {
   return linear_to_srgb(c);
-}
-
-GLuint make_target_texture(GLenum internal_format, int width, int height) {
-  GLuint id = 0;
-  glGenTextures(1, &id);
-  glBindTexture(GL_TEXTURE_2D, id);
-  glTexStorage2D(GL_TEXTURE_2D, 1, internal_format, width, height);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_2D, 0);
-  return id;
-}
-
-// Meshes without a material: grey, and double-sided because untextured plant meshes
-// (OBJ/PLY leaves) rarely have consistent winding.
-Material default_material() {
-  Material m;
-  m.name = "default";
-  m.base_color = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-  m.double_sided = true;
-  return m;
 }
 
 }  // namespace
@@ -97,6 +63,12 @@ Material default_material() {
 struct Rasterizer::Impl {
   GlContext& context;
   std::vector<GpuMesh> meshes;
+  std::vector<std::vector<size_t>> plant_meshes;  // instanced: per plant, indices into meshes
+  LodMeshes lod;                                  // levels of detail (set_lod)
+  InstanceDraws instances;
+  AoBuffers ao_buffers;  // a scene of many plants' AO (instanced programs only)
+  size_t drawn_instances = 0;
+  size_t queued_triangles = 0;  // instanced triangles drawn since the last glFinish
   std::vector<GLuint> textures;
   std::vector<glm::vec3> texture_means;  // linear mean colour of each texture's opaque texels
   std::vector<Material> materials;
@@ -120,6 +92,10 @@ struct Rasterizer::Impl {
       release_mesh(m);
     }
     meshes.clear();
+    plant_meshes.clear();
+    lod.release();
+    instances.release();
+    ao_buffers.release();
     if (!textures.empty()) glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
     textures.clear();
     texture_means.clear();
@@ -144,10 +120,11 @@ struct Rasterizer::Impl {
   }
 
   const RasterProgram& program(TargetMask targets, bool alpha_test) {
-    const uint32_t key = targets | (alpha_test ? 1u << 16 : 0u);
+    const bool instanced = instances.instanced();
+    const uint32_t key = targets | (alpha_test ? 1u << 16 : 0u) | (instanced ? 1u << 17 : 0u);
     auto it = programs.find(key);
     if (it == programs.end()) {
-      it = programs.emplace(key, make_raster_program(targets, alpha_test)).first;
+      it = programs.emplace(key, make_raster_program(targets, alpha_test, instanced)).first;
     }
     return it->second;
   }
@@ -202,109 +179,100 @@ struct Rasterizer::Impl {
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
   }
 
-  void set_frame_uniforms(const RasterProgram& p, const Camera& camera, const Lighting& lighting,
-                          const RasterRequest& request) {
-    const IdKind id_kind = request.id_kind;
-    glUseProgram(p.id);
-    glUniform1i(p.scaled_normals, request.scaled_normals ? 1 : 0);
-    glUniform1i(p.flat_albedo, request.flat_albedo ? 1 : 0);
-    glUniformMatrix4fv(p.view, 1, GL_FALSE, &camera.view[0][0]);
-    glUniformMatrix4fv(p.proj, 1, GL_FALSE, &camera.proj[0][0]);
-    glUniform1i(p.id_kind, id_kind == IdKind::Primitive ? 0 : id_kind == IdKind::Cluster ? 1 : 2);
-    glUniform1ui(p.only_cluster, request.only_cluster);
-    glUniform1i(p.ortho, camera.ortho ? 1 : 0);
-    glUniform1i(p.texture, 0);
-    glUniform1f(p.ambient, lighting.ambient);
-    // Scene-fixed lights are moved into view space here; camera-fixed ones already are.
-    std::array<glm::vec4, kMaxLights> vectors{};
-    std::array<glm::vec3, kMaxLights> colors{};
-    std::array<glm::vec2, kMaxLights> specs{};
-    const auto count = static_cast<int>(lighting.lights.size());
-    for (int i = 0; i < count; ++i) {
-      const Light& l = lighting.lights[i];
-      if (l.type == Light::Type::Directional) {
-        glm::vec3 d = l.camera_fixed ? l.vector : glm::mat3(camera.view) * l.vector;
-        vectors[i] = glm::vec4(glm::normalize(d), 0.0f);
-      } else {
-        glm::vec3 p3 = l.camera_fixed ? l.vector : glm::vec3(camera.view * glm::vec4(l.vector, 1));
-        vectors[i] = glm::vec4(p3, 1.0f);
-      }
-      colors[i] = l.color;
-      specs[i] = glm::vec2(l.specular, l.shininess);
+  // Material, program and per-mesh state for drawing `m`; returns the program in use.
+  const RasterProgram& prepare_mesh(const GpuMesh& m, TargetMask targets, const Camera& camera,
+                                    const Lighting& lighting, const RasterRequest& request,
+                                    std::array<const RasterProgram*, 2>& variants) {
+    static const Material fallback = default_material();
+    const Material& mat = m.material >= 0 ? materials[m.material] : fallback;
+    const bool has_texture = mat.base_color_texture >= 0;
+    // BLEND is drawn as MASK with cutoff 0.5: G-buffers hold one surface per pixel.
+    const bool alpha_test = mat.alpha_mode != AlphaMode::Opaque;
+    const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
+    const RasterProgram*& variant = variants[alpha_test ? 1 : 0];
+    if (!variant) {
+      variant = &program(targets, alpha_test);
+      set_frame_uniforms(*variant, camera, lighting, request, instances.branch_cluster());
+      if (instances.instanced()) ao_buffers.bind(*variant);
     }
-    glUniform1i(p.light_count, count);
-    glUniform4fv(p.light_vector, kMaxLights, &vectors[0][0]);
-    glUniform3fv(p.light_color, kMaxLights, &colors[0][0]);
-    glUniform2fv(p.light_spec, kMaxLights, &specs[0][0]);
-    set_ao_uniforms(p, request.ao);
+    const RasterProgram& p = *variant;
+    glUseProgram(p.id);
+    glUniform1ui(p.object_id, request.id_kind == IdKind::Material ? material_id(m) : m.object_id);
+    glUniform4fv(p.base_color, 1, &mat.base_color[0]);
+    glUniform1i(p.has_texture, has_texture ? 1 : 0);
+    glUniform1f(p.alpha_cutoff, cutoff);
+    glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
+    glUniform1i(p.oriented_foliage, m.oriented_foliage ? 1 : 0);
+    glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
+    if (has_texture) {
+      glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
+      glUniform3fv(p.texture_mean, 1, &texture_means[mat.base_color_texture][0]);
+    }
+    if (mat.double_sided) {
+      glDisable(GL_CULL_FACE);
+    } else {
+      glEnable(GL_CULL_FACE);
+    }
+    // Absent optional attributes read these constants (context state, not VAO state).
+    glVertexAttrib2f(kAttribUv, 0.0f, 0.0f);
+    glVertexAttrib4f(kAttribColor, 1.0f, 1.0f, 1.0f, 1.0f);
+    glVertexAttrib3f(kAttribNormal, 0.0f, 0.0f, 1.0f);
+    glVertexAttrib1f(kAttribKa, -1.0f);
+    glBindVertexArray(m.vao);
+    return p;
   }
 
-  static void set_ao_uniforms(const RasterProgram& p, const AoShading& ao) {
-    glUniform1i(p.ao_model, static_cast<int>(ao.model));
-    glUniform1f(p.ao_constant, ao.constant);
-    glUniform1f(p.ao_alpha_rho, ao.alpha_rho);
-    const int n = ao.model == AoShading::Model::Shells ? static_cast<int>(ao.centres.size()) : 0;
-    glUniform1i(p.ao_shell_count, n);
-    const bool crown = ao.model == AoShading::Model::Shells && ao.crown_radius > 0.0f;
-    glUniform4f(p.ao_crown, ao.crown_centre.x, ao.crown_centre.y, ao.crown_centre.z,
-                crown ? ao.crown_radius : 0.0f);
-    glUniform1i(p.ao_exact_solid_angle, ao.exact_solid_angle ? 1 : 0);
-    glUniform2f(p.ao_grass, ao.grass_ground, ao.grass_height);
-    glUniform2f(p.ao_ground, ao.ground_y, ao.ground_plane ? 1.0f : 0.0f);
-    if (n == 0) return;
-    glUniform3fv(p.ao_centre, n, &ao.centres[0][0]);
-    glUniform3fv(p.ao_anchor, n, &ao.anchors[0][0]);
-    glUniformMatrix3fv(p.ao_inverse, n, GL_FALSE, &ao.inverse[0][0][0]);
-    glUniformMatrix3fv(p.ao_transpose, n, GL_FALSE, &ao.transpose[0][0][0]);
-    glUniform1fv(p.ao_volume_scale, n, ao.volume_scale.data());
+  // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
+  // vertex); chunks bound that buffer instead of letting it grow with the mesh.
+  // Instanced: llvmpipe bins the triangles of many draws ahead of its rasteriser threads (up
+  // to 64 scenes, each up to tens of MB) when they fall behind, so the draws of a forest go in
+  // pieces of at most kQueuedTriangles and wait for the rasteriser in between (glFinish):
+  // the binned data stays bounded whatever the number of instances.
+  void draw_chunks(const GpuMesh& m, GLsizei instance_count) {
+    for (GLsizei first = 0; first < m.index_count; first += kDrawChunkIndices) {
+      const GLsizei count = std::min(kDrawChunkIndices, m.index_count - first);
+      const void* offset = reinterpret_cast<const void*>(size_t(first) * sizeof(uint32_t));
+      if (instance_count == 0) {
+        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset);
+        continue;
+      }
+      const size_t triangles = size_t(count / 3);
+      const auto per_draw = GLsizei(std::max<size_t>(1, kQueuedTriangles / triangles));
+      for (GLsizei i = 0; i < instance_count; i += per_draw) {
+        const GLsizei n = std::min(per_draw, instance_count - i);
+        if (queued_triangles + triangles * size_t(n) > kQueuedTriangles) {
+          glFinish();
+          queued_triangles = 0;
+        }
+        glDrawElementsInstancedBaseInstance(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset, n,
+                                            GLuint(i));
+        queued_triangles += triangles * size_t(n);
+      }
+    }
   }
 
   void draw_meshes(TargetMask targets, const Camera& camera, const Lighting& lighting,
                    const RasterRequest& request) {
-    const Material fallback = default_material();
     std::array<const RasterProgram*, 2> variants{};  // by alpha test
-    for (const GpuMesh& m : meshes) {
-      const Material& mat = m.material >= 0 ? materials[m.material] : fallback;
-      const bool has_texture = mat.base_color_texture >= 0;
-      // BLEND is drawn as MASK with cutoff 0.5: G-buffers hold one surface per pixel.
-      const bool alpha_test = mat.alpha_mode != AlphaMode::Opaque;
-      const float cutoff = mat.alpha_mode == AlphaMode::Mask ? mat.alpha_cutoff : 0.5f;
-      const RasterProgram*& variant = variants[alpha_test ? 1 : 0];
-      if (!variant) {
-        variant = &program(targets, alpha_test);
-        set_frame_uniforms(*variant, camera, lighting, request);
+    if (!instances.instanced()) {
+      for (const GpuMesh& m : meshes) {
+        prepare_mesh(m, targets, camera, lighting, request, variants);
+        draw_chunks(m, 0);
       }
-      const RasterProgram& p = *variant;
-      glUseProgram(p.id);
-      glUniform1ui(p.object_id, request.id_kind == IdKind::Material ? material_id(m) : m.object_id);
-      glUniform4fv(p.base_color, 1, &mat.base_color[0]);
-      glUniform1i(p.has_texture, has_texture ? 1 : 0);
-      glUniform1f(p.alpha_cutoff, cutoff);
-      glUniform1i(p.double_sided, mat.double_sided ? 1 : 0);
-      glUniform1i(p.oriented_foliage, m.oriented_foliage ? 1 : 0);
-      glUniform1i(p.has_normals, m.has_normals ? 1 : 0);
-      if (has_texture) {
-        glBindTexture(GL_TEXTURE_2D, textures[mat.base_color_texture]);
-        glUniform3fv(p.texture_mean, 1, &texture_means[mat.base_color_texture][0]);
+      drawn_instances = 1;
+    } else {
+      // Mirrored instances (a negative determinant) turn their triangles' winding around.
+      for (const InstanceBatch& batch : instances.prepare(camera, request.ssaa, &drawn_instances)) {
+        glFrontFace(batch.mirrored ? GL_CW : GL_CCW);
+        const bool whole = batch.level == 0;
+        const std::vector<GpuMesh>& pool = whole ? meshes : lod.meshes();
+        for (size_t mi : whole ? plant_meshes[batch.plant] : lod.of(batch.plant, batch.level)) {
+          prepare_mesh(pool[mi], targets, camera, lighting, request, variants);
+          instances.bind(batch);
+          draw_chunks(pool[mi], batch.count);
+        }
       }
-      if (mat.double_sided) {
-        glDisable(GL_CULL_FACE);
-      } else {
-        glEnable(GL_CULL_FACE);
-      }
-      // Absent optional attributes read these constants (context state, not VAO state).
-      glVertexAttrib2f(kAttribUv, 0.0f, 0.0f);
-      glVertexAttrib4f(kAttribColor, 1.0f, 1.0f, 1.0f, 1.0f);
-      glVertexAttrib3f(kAttribNormal, 0.0f, 0.0f, 1.0f);
-      glVertexAttrib1f(kAttribKa, -1.0f);
-      glBindVertexArray(m.vao);
-      // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
-      // vertex); chunks bound that buffer instead of letting it grow with the mesh.
-      for (GLsizei first = 0; first < m.index_count; first += kDrawChunkIndices) {
-        const GLsizei count = std::min(kDrawChunkIndices, m.index_count - first);
-        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(size_t(first) * sizeof(uint32_t)));
-      }
+      glFrontFace(GL_CCW);
     }
     glBindVertexArray(0);
   }
@@ -384,25 +352,54 @@ void Rasterizer::upload(const Scene& scene) {
     s.textures.push_back(upload_texture(t));
     s.texture_means.push_back(texture_mean(t));
   }
-  for (size_t i = 0; i < scene.meshes.size(); ++i) {
-    const Mesh& mesh = scene.meshes[i];
-    if (mesh.material >= static_cast<int>(scene.materials.size())) {
-      throw InputError("mesh '" + mesh.name + "'", "material index out of range");
-    }
+  for (const Mesh& mesh : scene.meshes) {  // by scene mesh index, to restore them
     s.own_normals.push_back(mesh.normals);
     s.own_ka.push_back(mesh.ka);
     s.own_outward.push_back(mesh.outward_normals ? 1 : 0);
     s.mesh_names.push_back(mesh.name);
-    if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
-    s.meshes.push_back(upload_mesh(mesh, static_cast<uint32_t>(i + 1)));
   }
+  s.instances.upload(scene);
+  s.plant_meshes.assign(scene.instanced() ? scene.plants.size() : 0, {});
+  for (size_t p = 0; p < scene.plant_count(); ++p) {
+    const std::vector<uint32_t> meshes = plant_meshes(scene, p);
+    for (size_t k = 0; k < meshes.size(); ++k) {
+      const Mesh& mesh = scene.meshes[meshes[k]];
+      if (mesh.material >= static_cast<int>(scene.materials.size())) {
+        throw InputError("mesh '" + mesh.name + "'", "material index out of range");
+      }
+      if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
+      // Object ids: the mesh's index in its plant + 1 (a flat scene: in the scene).
+      s.meshes.push_back(upload_mesh(mesh, static_cast<uint32_t>(k + 1)));
+      s.meshes.back().scene_index = meshes[k];
+      if (scene.instanced()) s.plant_meshes[p].push_back(s.meshes.size() - 1);
+    }
+  }
+}
+
+void Rasterizer::set_lod(const Scene& scene, const std::vector<PlantLod>& lods) {
+  Impl& s = *m_impl;
+  s.context.make_current();
+  s.lod.release();
+  if (!scene.instanced() || lods.empty()) return;
+  s.lod.upload(scene, lods);
+  std::vector<size_t> triangles;
+  std::vector<int> levels;
+  for (size_t p = 0; p < scene.plants.size(); ++p) {
+    size_t n = 0;
+    for (uint32_t mi : scene.plants[p].meshes)
+      n += scene.meshes[mi].triangle_count();
+    triangles.push_back(n);
+    levels.push_back(int(lods[p].levels.size()));
+  }
+  s.instances.set_levels(triangles, levels);
 }
 
 void Rasterizer::set_vertex_shading(const VertexShading& shading) {
   Impl& s = *m_impl;
   s.context.make_current();
+  s.lod.set_shading(shading);
   for (GpuMesh& m : s.meshes) {
-    const size_t i = m.object_id - 1;  // scene mesh index
+    const size_t i = m.scene_index;
     if (i >= shading.normals.size()) continue;
     static const std::vector<float> kNone;
     replace_shading(m, shading.normals[i], i < shading.ka.size() ? shading.ka[i] : kNone,
@@ -417,10 +414,15 @@ void Rasterizer::restore_vertex_shading() {
   if (!s.shading_replaced) return;
   s.context.make_current();
   for (GpuMesh& m : s.meshes) {
-    const size_t i = m.object_id - 1;  // scene mesh index
+    const size_t i = m.scene_index;
     replace_shading(m, s.own_normals[i], s.own_ka[i], s.mesh_names[i]);
     m.oriented_foliage = s.own_outward[i] != 0;
   }
+  // The levels of detail take one orientation for every mesh: outward when all are (a baked
+  // file's).
+  const bool all_outward = std::all_of(s.own_outward.begin(), s.own_outward.end(),
+                                       [](char outward) { return outward != 0; });
+  s.lod.set_shading(VertexShading{s.own_normals, s.own_ka, all_outward && !s.own_outward.empty()});
   s.shading_replaced = false;
 }
 
@@ -480,6 +482,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
+  if (s.instances.instanced()) s.ao_buffers.upload(ao);
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -488,6 +491,10 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
 
 TargetMask Rasterizer::last_allocated_targets() const {
   return m_impl->fbo_targets;
+}
+
+size_t Rasterizer::last_drawn_instances() const {
+  return m_impl->drawn_instances;
 }
 
 }  // namespace sylva

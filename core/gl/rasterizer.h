@@ -1,6 +1,7 @@
-// The raster pass: one indexed draw per mesh into a framebuffer with only the requested
-// targets attached (MRT). Colour is Luft et al. Eq. 1 local illumination: ambient * ka +
-// sum over lights of diffuse + specular, with ka decoded from the normal's length and the
+// The raster pass: one indexed draw per mesh (an instanced scene: per plant mesh, instanced
+// over the plant's visible instances, core/gl/instance_draws.h) into a framebuffer with only
+// the requested targets attached (MRT). Colour is Luft et al. Eq. 1 local illumination: ambient *
+// ka + sum over lights of diffuse + specular, with ka decoded from the normal's length and the
 // normal re-normalised in the vertex shader. Leaves are drawn double-sided (normal flipped
 // with gl_FrontFacing); alpha-MASK materials discard fragments below the cutoff from the
 // base-colour texture's alpha, so every target follows the leaf shape; BLEND materials are
@@ -16,6 +17,7 @@
 #include "core/gl/gbuffer.h"
 #include "core/gl/gl_context.h"
 #include "core/gl/lights.h"
+#include "core/scene/lod.h"
 #include "core/scene/scene.h"
 
 namespace sylva {
@@ -53,7 +55,12 @@ class Rasterizer {
 
   // Uploads geometry, ids and textures. Call again when the scene changes.
   void upload(const Scene& scene);
-  // Replaces the uploaded normals/ka of the meshes `shading` covers; the rest keep theirs.
+  // Levels of detail of an instanced scene's plants (npr/plant_lod.h; after upload(), one
+  // PlantLod per plant): from then on each instance is drawn at the level its projected size
+  // asks for (core/gl/instance_draws.h). Empty, or a flat scene: every instance whole.
+  void set_lod(const Scene& scene, const std::vector<PlantLod>& lods);
+  // Replaces the uploaded normals/ka of the meshes `shading` covers (and of their levels of
+  // detail); the rest keep theirs.
   void set_vertex_shading(const VertexShading& shading);
   // Puts the uploaded scene's own normals and ka back after set_vertex_shading (nothing to do
   // when they were not replaced).
@@ -62,6 +69,8 @@ class Rasterizer {
 
   // Targets allocated by the most recent render (for tests of the render graph's culling).
   TargetMask last_allocated_targets() const;
+  // Instances the most recent render drew (those in view; a flat scene: 1).
+  size_t last_drawn_instances() const;
 
  private:
   struct Impl;

@@ -16,11 +16,19 @@ layout(location = 3) in vec4 a_color;
 layout(location = 4) in uvec2 a_ids;
 layout(location = 5) in uint a_role;
 layout(location = 6) in float a_ka;  // a separate ambient coefficient, or -1: use |a_normal|
+#ifdef INSTANCED
+// Per instance (core/gl/instance_draws.h): plant space -> world, its normal matrix, and the
+// bases added to the plant's own primitive, foliage cluster and object ids.
+layout(location = 7) in mat4 a_model;
+layout(location = 11) in mat3 a_normal_matrix;
+layout(location = 14) in uvec4 a_id_base;  // w: the plant
+uniform uint u_branch_cluster;  // the one cluster id of every instance's non-foliage
+#endif
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
-uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object
-uniform uint u_object_id;   // mesh index + 1
+uniform int u_id_kind;      // 0 primitive, 1 cluster, 2 object, 3 material
+uniform uint u_object_id;   // mesh index + 1 (instanced: index in its plant + 1), or material id
 uniform uint u_only_cluster;  // 0 = draw everything, else only this cluster's triangles
 
 out vec3 v_view_pos;
@@ -31,25 +39,49 @@ out vec2 v_uv;
 out vec4 v_color;
 flat out uint v_id;
 flat out uint v_role;
+#ifdef INSTANCED
+flat out uint v_plant;
+out vec3 v_plant_pos;
+flat out vec3 v_m0, v_m1, v_m2;
+#endif
 
 void main() {
-  vec4 view_pos = u_view * vec4(a_position, 1.0);
   // Luft et al. Sec. 3.2: ka is stored as the normal's length; unit normals mean ka = 1.
   // A separate ka attribute, when the mesh has one, takes precedence.
   float len = length(a_normal);
   v_ka = clamp(a_ka >= 0.0 ? a_ka : len, 0.0, 1.0);
+#ifdef INSTANCED
+  vec3 world_pos = (a_model * vec4(a_position, 1.0)).xyz;
+  vec3 world_normal = a_normal_matrix * a_normal;
+  float world_len = length(world_normal);
+  vec3 unit_normal = len > 1e-20 && world_len > 1e-20 ? world_normal / world_len : vec3(0.0);
+  uvec2 ids = uvec2(a_ids.x + a_id_base.x, a_role == 0u || u_branch_cluster == 0u
+                                               ? a_ids.y + a_id_base.y : u_branch_cluster);
+  uint object_id = u_object_id + a_id_base.z;
+  v_plant = a_id_base.w;
+  v_plant_pos = a_position;
+  v_m0 = a_model[0].xyz;
+  v_m1 = a_model[1].xyz;
+  v_m2 = a_model[2].xyz;
+#else
+  vec3 world_pos = a_position;
+  vec3 unit_normal = len > 1e-20 ? a_normal / len : vec3(0.0);
+  uvec2 ids = a_ids;
+  uint object_id = u_object_id;
+#endif
+  vec4 view_pos = u_view * vec4(world_pos, 1.0);
   // The view matrix is rigid, so its upper 3x3 rotates normals.
-  v_normal = mat3(u_view) * (len > 1e-20 ? a_normal / len : vec3(0.0));
+  v_normal = mat3(u_view) * unit_normal;
   v_view_pos = view_pos.xyz;
-  v_world_pos = a_position;
+  v_world_pos = world_pos;
   v_uv = a_uv;
   v_color = a_color;
-  v_id = u_id_kind == 0 ? a_ids.x : (u_id_kind == 1 ? a_ids.y : u_object_id);
+  v_id = u_id_kind == 0 ? ids.x : (u_id_kind == 1 ? ids.y : (u_id_kind == 2 ? object_id : u_object_id));
   v_role = a_role;
   gl_Position = u_proj * view_pos;
   // Every vertex of a triangle carries its cluster, so moving them all outside the clip
   // volume drops the triangle before rasterisation.
-  if (u_only_cluster != 0u && a_ids.y != u_only_cluster) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+  if (u_only_cluster != 0u && ids.y != u_only_cluster) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
 }
 )GLSL";
 
@@ -62,6 +94,23 @@ in vec2 v_uv;
 in vec4 v_color;
 flat in uint v_id;
 flat in uint v_role;
+#ifdef INSTANCED
+flat in uint v_plant;       // the instance's plant
+in vec3 v_plant_pos;        // plant-space position
+flat in vec3 v_m0, v_m1, v_m2;  // the instance transform's 3x3 columns
+struct AoShell {
+  vec4 centre;  // w: volume scale |det L|
+  vec4 anchor;
+  vec4 inverse[3];
+  vec4 transpose[3];
+};
+layout(std430, binding = 0) readonly buffer AoShellBuffer { AoShell ao_shells[]; };
+layout(std430, binding = 1) readonly buffer AoPlantBuffer { uvec4 ao_plants[]; };
+layout(std430, binding = 2) readonly buffer AoCrownBuffer { vec4 ao_crowns[]; };
+layout(std430, binding = 3) readonly buffer AoGridBuffer { uint ao_grid[]; };
+uniform vec4 u_ao_grid;         // x and z of the grid's corner, cell size (<= 0: no crowns)
+uniform ivec2 u_ao_grid_cells;  // cells along x and z
+#endif
 
 uniform vec4 u_base_color;      // linear RGBA factor
 uniform bool u_has_texture;
@@ -138,127 +187,10 @@ vec3 surface_normal() {
   return u_double_sided && !gl_FrontFacing && !keep ? -n : n;
 }
 
-// Hegeman et al. Eq. 4-6 for the world point x with world normal n, as npr/hegeman_ao.cpp's
-// hegeman_visibility (ball_cap in the unit ball of the shell whose anchor is nearest).
-float hegeman_visibility(vec3 x, vec3 n) {
-  if (u_ao_shell_count <= 0) return 1.0;
-  int s = 0;
-  float best = 3.4e38;
-  for (int i = 0; i < u_ao_shell_count; ++i) {
-    vec3 e = x - u_ao_anchor[i];
-    float d = dot(e, e);
-    if (d < best) {
-      best = d;
-      s = i;
-    }
-  }
-  if (!(u_ao_alpha_rho > 0.0) || !(u_ao_volume_scale[s] > 0.0)) return 1.0;
-  vec3 to_centre = -(u_ao_inverse[s] * (x - u_ao_centre[s]));
-  vec3 nu = u_ao_transpose[s] * n;
-  float len = length(nu);
-  float t = 0.0;
-  vec3 in_plane = vec3(0.0);
-  if (len > 0.0) {
-    vec3 dir = nu / len;
-    t = dot(dir, to_centre);
-    in_plane = to_centre - t * dir;
-  } else {
-    t = -length(to_centre);  // zero normal: face away from the centre
-  }
-  float h = clamp(1.0 + t, 0.0, 2.0);
-  float d = length(in_plane);
-  float volume = 3.14159265358979 * h * h * (3.0 - h) / 3.0 * u_ao_volume_scale[s];  // Eq. 4
-  float h2 = h * h, d2 = d * d;
-  float f = h2 + d2 > 0.0 ? clamp(h2 / (h2 + d2), 0.0, 1.0) : 1.0;  // Eq. 5
-  float exponent = u_ao_alpha_rho * f * volume;
-  if (!(exponent > 0.0)) return 1.0;
-  return clamp(exp(-exponent), 0.0, 1.0);  // Eq. 6
-}
+)GLSL";
 
-const float kPi = 3.14159265358979;
-
-// The solid angle of a sphere with sin(half-angle) s, as npr/hegeman_ao.cpp's
-// sphere_solid_angle: Eq. 7 or the exact 2 pi (1 - cos beta) without cancellation.
-float sphere_solid_angle(float s, bool exact) {
-  return exact ? 2.0 * kPi * s * s / (1.0 + sqrt(max(0.0, 1.0 - s * s))) : kPi * s * s;
-}
-
-// cone_solid_angle_above_horizon of npr/hegeman_ao.cpp (Mazonka 2012).
-float cone_solid_angle_above_horizon(float beta, float gamma) {
-  beta = clamp(beta, 0.0, kPi / 2.0);
-  gamma = clamp(gamma, 0.0, kPi);
-  float sb = sin(beta), cb = cos(beta);
-  float full = 2.0 * kPi * sb * sb / (1.0 + cb);
-  if (gamma + beta <= kPi / 2.0) return full;
-  if (gamma - beta >= kPi / 2.0) return 0.0;
-  float sg = sin(gamma), cg = cos(gamma);
-  if (!(sg * sb > 0.0)) return cg > 0.0 ? full : 0.0;
-  float a1 = acos(clamp(cg / sb, -1.0, 1.0));
-  float a2 = acos(clamp(-cg * cb / (sg * sb), -1.0, 1.0));
-  return clamp(2.0 * (kPi - a1 - cb * a2), 0.0, full);
-}
-
-// Hegeman et al. Eq. 7-8 with horizon clipping, as npr/hegeman_ao.cpp's object_visibility:
-// the crown's sphere seen from x, clamped to its boundary value inside.
-float object_visibility(vec3 x, vec3 n) {
-  float r = u_ao_crown.w;
-  if (!(r > 0.0)) return 1.0;
-  vec3 to_centre = u_ao_crown.xyz - x;
-  float dist = length(to_centre);
-  float s = dist > r ? r / dist : 1.0;
-  float a = sphere_solid_angle(s, u_ao_exact_solid_angle != 0);
-  float n_len = length(n);
-  if (n_len > 0.0) {
-    float share = 0.5;  // x at the centre: no direction to the crown
-    if (dist > 0.0) {
-      float beta = dist > r ? asin(clamp(r / dist, 0.0, 1.0)) : kPi / 2.0;
-      float gamma = acos(clamp(dot(n / n_len, to_centre / dist), -1.0, 1.0));
-      float whole = sphere_solid_angle(sin(beta), true);
-      share = whole > 0.0 ? cone_solid_angle_above_horizon(beta, gamma) / whole : 0.0;
-    }
-    a *= clamp(share, 0.0, 1.0);
-  }
-  return clamp(1.0 - a / (2.0 * kPi), 0.0, 1.0);  // Eq. 8
-}
-
-// Hegeman et al. Eq. 9, as npr/hegeman_ao.cpp's grass_visibility with up = +Y.
-float grass_visibility(vec3 x, vec3 n) {
-  float h = u_ao_grass.y;
-  if (!(h > 0.0)) return 1.0;
-  float pz = clamp(x.y - u_ao_grass.x, 0.0, h);
-  float n_len = length(n);
-  float cos_theta = n_len > 0.0 ? clamp(n.y / n_len, -1.0, 1.0) : 0.0;
-  return clamp(pz / (2.0 * h) * (1.0 + cos_theta), 0.0, 1.0);
-}
-
-// The share of the hemisphere a flat ground below x hides, as npr/hegeman_ao.cpp's
-// ground_plane_occlusion with up = +Y: theta / pi.
-float ground_plane_occlusion(vec3 x, vec3 n) {
-  if (u_ao_ground.y == 0.0 || !(x.y >= u_ao_ground.x)) return 0.0;
-  float n_len = length(n);
-  if (!(n_len > 0.0)) return 0.5;
-  return clamp(acos(clamp(n.y / n_len, -1.0, 1.0)) / kPi, 0.0, 1.0);
-}
-
-// Hegeman models: the crown's own leaves by their shell (Eq. 4-6); everything else by the
-// crown's solid angle (Eq. 7-8), grass blades also by their height (Eq. 9), wood and other
-// geometry also by a flat ground under them.
-float hegeman_model_visibility(vec3 x, vec3 n) {
-  if (v_role == 0u) return hegeman_visibility(x, n);  // Role::Foliage
-  float v = object_visibility(x, n);
-  if (v_role == 4u) v *= grass_visibility(x, n);  // Role::Grass
-  if (v_role == 1u || v_role == 3u) v -= ground_plane_occlusion(x, n);  // Wood, Other
-  return clamp(v, 0.0, 1.0);
-}
-
-float ambient_visibility(vec3 n_view) {
-  if (u_ao_model == 1) return u_ao_constant;
-  if (u_ao_model == 2) return clamp(v_ka, 0.0, 1.0);
-  if (u_ao_model == 3)
-    return hegeman_model_visibility(v_world_pos, transpose(mat3(u_view)) * n_view);
-  return 1.0;
-}
-
+// The ambient visibility functions (shader_ao.cpp) go between the two halves.
+const char* const kFragmentMain = R"GLSL(
 void main() {
   vec4 base = u_base_color * v_color;
 #if defined(OUT_COLOR) || defined(OUT_ALBEDO)
@@ -345,13 +277,15 @@ std::string info_log(GLuint object, bool is_program) {
 
 }  // namespace
 
-std::string raster_vertex_source() {
-  return std::string("#version 450 core\n") + kVertexBody;
+std::string raster_vertex_source(bool instanced) {
+  return std::string("#version 450 core\n") + (instanced ? "#define INSTANCED 1\n" : "") +
+         kVertexBody;
 }
 
-std::string raster_fragment_source(TargetMask targets, bool alpha_test) {
+std::string raster_fragment_source(TargetMask targets, bool alpha_test, bool instanced) {
   std::string s = "#version 450 core\n";
   if (alpha_test) s += "#define ALPHA_TEST 1\n";
+  if (instanced) s += "#define INSTANCED 1\n";
   for (Target t : kAllTargets) {
     if (!has(targets, t)) continue;
     std::string name = target_name(t);
@@ -359,7 +293,7 @@ std::string raster_fragment_source(TargetMask targets, bool alpha_test) {
       c = static_cast<char>(c - 'a' + 'A');
     s += "#define OUT_" + name + " 1\n";
   }
-  return s + kFragmentBody;
+  return s + kFragmentBody + raster_ao_glsl() + kFragmentMain;
 }
 
 GLuint compile_shader(GLenum stage, const std::string& source, const std::string& name) {
@@ -394,13 +328,13 @@ GLuint link_program(GLuint vertex, GLuint fragment, const std::string& name) {
   return program;
 }
 
-GLuint build_raster_program(TargetMask targets, bool alpha_test) {
-  const std::string name =
-      "raster pass (targets " + std::to_string(targets) + (alpha_test ? ", alpha test)" : ")");
-  GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(), name + " vertex");
+GLuint build_raster_program(TargetMask targets, bool alpha_test, bool instanced) {
+  const std::string name = "raster pass (targets " + std::to_string(targets) +
+                           (alpha_test ? ", alpha test" : "") + (instanced ? ", instanced)" : ")");
+  GLuint vs = compile_shader(GL_VERTEX_SHADER, raster_vertex_source(instanced), name + " vertex");
   GLuint fs = 0;
   try {
-    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test),
+    fs = compile_shader(GL_FRAGMENT_SHADER, raster_fragment_source(targets, alpha_test, instanced),
                         name + " fragment");
   } catch (...) {
     glDeleteShader(vs);
@@ -409,15 +343,16 @@ GLuint build_raster_program(TargetMask targets, bool alpha_test) {
   return link_program(vs, fs, name);
 }
 
-RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
+RasterProgram make_raster_program(TargetMask targets, bool alpha_test, bool instanced) {
   RasterProgram p;
-  p.id = build_raster_program(targets, alpha_test);
+  p.id = build_raster_program(targets, alpha_test, instanced);
   auto loc = [&](const char* name) { return glGetUniformLocation(p.id, name); };
   p.view = loc("u_view");
   p.proj = loc("u_proj");
   p.id_kind = loc("u_id_kind");
   p.only_cluster = loc("u_only_cluster");
   p.object_id = loc("u_object_id");
+  p.branch_cluster = loc("u_branch_cluster");
   p.base_color = loc("u_base_color");
   p.has_texture = loc("u_has_texture");
   p.texture = loc("u_texture");
@@ -447,6 +382,8 @@ RasterProgram make_raster_program(TargetMask targets, bool alpha_test) {
   p.ao_exact_solid_angle = loc("u_ao_exact_solid_angle");
   p.ao_grass = loc("u_ao_grass");
   p.ao_ground = loc("u_ao_ground");
+  p.ao_grid = loc("u_ao_grid");
+  p.ao_grid_cells = loc("u_ao_grid_cells");
   return p;
 }
 

@@ -3,6 +3,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/scene/instances.h"
 
 namespace sylva {
 namespace {
@@ -26,12 +27,12 @@ void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
     parent[a] = b;
 }
 
-}  // namespace
-
-void assign_primitive_ids(Scene& scene) {
+// Ids 1, 2, ... over `meshes` in order.
+void assign_plant_ids(Scene& scene, const std::vector<uint32_t>& meshes) {
   uint32_t next = 1;
   std::vector<uint32_t> parent, id_of_root;
-  for (Mesh& mesh : scene.meshes) {
+  for (uint32_t mi : meshes) {
+    Mesh& mesh = scene.meshes[mi];
     const size_t nv = mesh.positions.size();
     const size_t nt = mesh.triangle_count();
     parent.resize(nv);
@@ -51,6 +52,13 @@ void assign_primitive_ids(Scene& scene) {
       mesh.primitive_ids[t] = id_of_root[root];
     }
   }
+}
+
+}  // namespace
+
+void assign_primitive_ids(Scene& scene) {
+  for (size_t p = 0; p < scene.plant_count(); ++p)
+    assign_plant_ids(scene, plant_meshes(scene, p));
 }
 
 }  // namespace sylva

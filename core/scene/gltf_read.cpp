@@ -17,6 +17,8 @@
 #include "core/scene/glb_container.h"
 #include "core/scene/gltf_accessor.h"
 #include "core/scene/gltf_limits.h"
+#include "core/scene/gltf_nodes.h"
+#include "core/scene/gltf_primitives.h"
 #include "core/scene/load.h"
 #include "core/scene/texture_decode.h"
 
@@ -42,20 +44,6 @@ bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::stri
   return true;
 }
 
-Role parse_role(const Json& extras, bool& found) {
-  found = false;
-  if (!extras.is_object() || !extras.contains("sylva_role") || !extras["sylva_role"].is_string())
-    return Role::Other;
-  const std::string r = extras["sylva_role"].get<std::string>();
-  found = true;
-  if (r == "foliage") return Role::Foliage;
-  if (r == "wood") return Role::Wood;
-  if (r == "ground") return Role::Ground;
-  if (r == "grass") return Role::Grass;
-  if (r != "other") found = false;
-  return Role::Other;
-}
-
 class Reader {
  public:
   Reader(const std::string& path, const tinygltf::Model& model, const Json& json)
@@ -64,7 +52,6 @@ class Reader {
   Scene read() {
     read_materials();
     read_nodes();
-    read_hierarchy();
     return std::move(m_scene);
   }
 
@@ -147,201 +134,119 @@ class Reader {
                           warnings);
   }
 
-  static glm::dmat4 local_matrix(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-      glm::dmat4 m;
-      for (int i = 0; i < 16; ++i)
-        m[i / 4][i % 4] = node.matrix[size_t(i)];
-      return m;
-    }
-    glm::dmat4 m(1.0);
-    if (node.translation.size() == 3)
-      m = glm::translate(m,
-                         glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-    if (node.rotation.size() == 4)
-      m *= glm::mat4_cast(glm::normalize(
-          glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])));
-    if (node.scale.size() == 3)
-      m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-    return m;
-  }
-
+  // Every mesh placed where the node tree puts it (gltf_nodes.h): a flat scene in world space,
+  // or the plants in their own space with their instances (the meshes outside every plant
+  // first, as a plant with one instance at the identity).
   void read_nodes() {
-    const size_t n = m_model.nodes.size();
-    std::vector<int> parent(n, -1);
-    for (size_t i = 0; i < n; ++i) {
-      for (int c : m_model.nodes[i].children) {
-        if (c < 0 || size_t(c) >= n)
-          fail("node " + std::to_string(i) + " has a missing child " + std::to_string(c));
-        if (parent[size_t(c)] != -1 || size_t(c) == i)
-          fail("node " + std::to_string(c) + " has more than one parent (glTF needs a tree)");
-        parent[size_t(c)] = int(i);
-      }
-    }
-    std::vector<int> roots;
-    const int s =
-        m_model.defaultScene >= 0 ? m_model.defaultScene : (m_model.scenes.empty() ? -1 : 0);
-    if (s >= int(m_model.scenes.size()))
-      fail("the default scene " + std::to_string(s) + " does not exist");
-    if (s >= 0) {
-      roots = m_model.scenes[size_t(s)].nodes;
-      for (int r : roots) {
-        if (r < 0 || size_t(r) >= n)
-          fail("scene " + std::to_string(s) + " refers to a missing node");
-        if (parent[size_t(r)] != -1) fail("scene root node " + std::to_string(r) + " has a parent");
-      }
-    } else {
-      for (size_t i = 0; i < n; ++i)
-        if (parent[i] == -1) roots.push_back(int(i));
-    }
-    // With one parent per node and parentless roots there is no cycle; walk iteratively so
-    // deep chains cannot overflow the stack.
-    std::vector<std::pair<int, glm::dmat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-      stack.emplace_back(*it, glm::dmat4(1.0));
-    std::vector<char> seen(n, 0);
-    while (!stack.empty()) {
-      auto [i, parent_world] = stack.back();
-      stack.pop_back();
-      if (seen[size_t(i)]) fail("node " + std::to_string(i) + " appears twice in the scene");
-      seen[size_t(i)] = 1;
-      const tinygltf::Node& node = m_model.nodes[size_t(i)];
-      const glm::dmat4 world = parent_world * local_matrix(node);
-      if (node.mesh >= 0) add_mesh(node, world);
-      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
-        stack.emplace_back(*c, world);
-    }
-  }
-
-  void add_mesh(const tinygltf::Node& node, const glm::dmat4& world) {
-    if (size_t(node.mesh) >= m_model.meshes.size())
-      fail("node '" + node.name + "' refers to a missing mesh");
-    const tinygltf::Mesh& src = m_model.meshes[size_t(node.mesh)];
-    const Json* jmesh = json_at({"meshes", size_t(node.mesh)});
-    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
-    const bool flip = glm::determinant(glm::dmat3(world)) < 0.0;
-    for (size_t k = 0; k < src.primitives.size(); ++k) {
-      const tinygltf::Primitive& prim = src.primitives[k];
-      std::string name = !src.name.empty()    ? src.name
-                         : !node.name.empty() ? node.name
-                                              : "mesh" + std::to_string(node.mesh);
-      // Appended piecewise: "[" + std::string&& trips a GCC 12 -Wrestrict false positive.
-      if (src.primitives.size() > 1) name.append("[").append(std::to_string(k)).append("]");
-      if (prim.mode >= 0 && prim.mode <= 3) {
-        m_scene.report.warn("points/lines", "mesh '" + name + "': points/lines primitive skipped");
-        continue;
-      }
-      if (prim.mode < 0 || prim.mode > 6)
-        fail("mesh '" + name + "': unknown primitive mode " + std::to_string(prim.mode));
-      auto pos = prim.attributes.find("POSITION");
-      if (pos == prim.attributes.end()) {
-        m_scene.report.warn("no POSITION",
-                            "mesh '" + name + "': primitive without POSITION skipped");
-        continue;
-      }
-      Mesh mesh;
-      mesh.name = name;
-      mesh.material = prim.material;
-      if (prim.material >= int(m_scene.materials.size()) || prim.material < -1)
-        fail("mesh '" + name + "': material does not exist");
-      int comps = 0;
-      const std::string where = "mesh '" + name + "'";
-      std::vector<float> p = m_accessors.floats(pos->second, comps, "POSITION");
-      if (comps != 3) fail(where + ": POSITION must be VEC3");
-      const size_t nv = p.size() / 3;
-      mesh.positions.resize(nv);
-      for (size_t v = 0; v < nv; ++v)
-        mesh.positions[v] =
-            glm::vec3(world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0));
-      if (auto a = prim.attributes.find("NORMAL"); a != prim.attributes.end()) {
-        std::vector<float> nrm = m_accessors.floats(a->second, comps, "NORMAL");
-        if (comps != 3 || nrm.size() != p.size())
-          fail(where + ": NORMAL must be VEC3 with one per vertex");
-        mesh.normals.resize(nv);
-        for (size_t v = 0; v < nv; ++v) {
-          const glm::dvec3 wn =
-              normal_matrix * glm::dvec3(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]);
-          const double len = glm::length(wn);
-          mesh.normals[v] = len > 0.0 && std::isfinite(len) ? glm::vec3(wn / len) : glm::vec3(0.0f);
+    const NodePlan plan = plan_nodes(m_path, m_model, m_json, m_accessors);
+    GltfPrimitiveReader primitives(m_path, m_model, m_json, m_accessors, m_scene.materials.size(),
+                                   m_scene.report);
+    std::vector<int> plant_index(plan.plants.size(), -1);
+    for (size_t p = 0; p < plan.plants.size(); ++p) {
+      Plant plant;
+      plant.name = plan.plants[p].name;
+      for (const MeshPlacement& at : plan.plants[p].meshes) {
+        const std::string& node_name = m_model.nodes[size_t(at.node)].name;
+        for (const LocalPrimitive& lp : primitives.read(at.mesh, node_name)) {
+          plant.meshes.push_back(uint32_t(m_scene.meshes.size()));
+          m_scene.meshes.push_back(
+              place_primitive(lp, at.transform, primitives.name(at.mesh, node_name, lp)));
         }
       }
-      if (auto a = prim.attributes.find("TEXCOORD_0"); a != prim.attributes.end()) {
-        std::vector<float> uv = m_accessors.floats(a->second, comps, "TEXCOORD_0");
-        if (comps != 2 || uv.size() != nv * 2)
-          fail(where + ": TEXCOORD_0 must be VEC2 with one per vertex");
-        mesh.uvs.resize(nv);
-        for (size_t v = 0; v < nv; ++v)
-          mesh.uvs[v] = glm::vec2(uv[2 * v], uv[2 * v + 1]);
+      if (!plan.instanced() || plant.meshes.empty()) continue;
+      const int root = plan.plants[p].root_node;
+      plant.hierarchy =
+          root >= 0 ? read_hierarchy(json_at({"nodes", size_t(root), "extras", "sylva_hierarchy"}))
+                    : scene_hierarchy();
+      plant_index[p] = int(m_scene.plants.size());
+      m_scene.plants.push_back(std::move(plant));
+    }
+    read_cameras(plan);
+    if (!plan.instanced()) {
+      m_scene.hierarchy = scene_hierarchy();
+      return;
+    }
+    if (plant_index[0] >= 0)
+      m_scene.instances.push_back({uint32_t(plant_index[0]), glm::mat4(1.0f), ""});
+    for (const InstancePlan& inst : plan.instances)
+      add_instance(inst, plant_index[inst.plant]);
+  }
+
+  // The placed cameras; one with impossible parameters (a zero field of view, far before near,
+  // a scale of zero) is left out with a warning.
+  void read_cameras(const NodePlan& plan) {
+    for (const CameraPlacement& at : plan.cameras) {
+      const tinygltf::Camera& src = m_model.cameras[size_t(at.camera)];
+      SceneCamera c;
+      c.name = m_model.nodes[size_t(at.node)].name;
+      if (c.name.empty()) c.name = src.name;
+      if (c.name.empty()) c.name = "camera " + std::to_string(m_scene.cameras.size());
+      std::string bad;
+      c.orthographic = src.type == "orthographic";
+      if (c.orthographic) {
+        c.xmag = float(std::abs(src.orthographic.xmag));
+        c.ymag = float(std::abs(src.orthographic.ymag));
+        c.znear = float(src.orthographic.znear);
+        c.zfar = float(src.orthographic.zfar);
+        if (!(c.xmag > 0.0f && c.ymag > 0.0f && std::isfinite(c.xmag) && std::isfinite(c.ymag)))
+          bad = "xmag and ymag must be non-zero";
+        else if (!(c.znear >= 0.0f && c.zfar > c.znear && std::isfinite(c.zfar)))
+          bad = "needs 0 <= znear < zfar";
+      } else if (src.type == "perspective") {
+        c.yfov = float(src.perspective.yfov);
+        c.aspect = float(src.perspective.aspectRatio);
+        c.znear = float(src.perspective.znear);
+        c.zfar = float(src.perspective.zfar);
+        if (!(c.yfov > 0.0f && c.yfov < 3.14159f))
+          bad = "yfov must be in (0, pi)";
+        else if (!(c.znear > 0.0f && std::isfinite(c.znear)))
+          bad = "znear must be > 0";
+        else if (!(c.zfar == 0.0f || (c.zfar > c.znear && std::isfinite(c.zfar))))
+          bad = "zfar must be above znear";
+        if (!(c.aspect >= 0.0f && std::isfinite(c.aspect))) c.aspect = 0.0f;
+      } else {
+        bad = "type '" + src.type + "' is not perspective or orthographic";
       }
-      // A baked file's COLOR_0 is the ka preview for other engines (gltf_write.h); its real
-      // vertex colours, if any, are in COLOR_1.
-      const Json* marker = json_at({"meshes", size_t(node.mesh), "extras", "sylva_color_0"});
-      const bool baked_colors = marker && marker->is_string() && *marker == "ambient";
-      const Json* outward = json_at({"meshes", size_t(node.mesh), "extras", "sylva_normals"});
-      mesh.outward_normals = outward && outward->is_string() && *outward == "outward";
-      const char* color_name = baked_colors ? "COLOR_1" : "COLOR_0";
-      if (auto a = prim.attributes.find(color_name); a != prim.attributes.end()) {
-        std::vector<float> c = m_accessors.floats(a->second, comps, color_name);
-        if ((comps != 3 && comps != 4) || c.size() != nv * size_t(comps))
-          fail(where + ": " + color_name + " must be VEC3 or VEC4 with one per vertex");
-        mesh.colors.resize(nv);
-        for (size_t v = 0; v < nv; ++v)
-          mesh.colors[v] = glm::vec4(c[comps * v], c[comps * v + 1], c[comps * v + 2],
-                                     comps == 4 ? c[comps * v + 3] : 1.0f);
+      if (bad.empty() && !rigid(at.world, c.to_world)) bad = "its node's transform is singular";
+      if (!bad.empty()) {
+        m_scene.report.warn("camera", "camera '" + c.name + "': " + bad + "; left out");
+        continue;
       }
-      if (auto a = prim.attributes.find("_AMBIENT"); a != prim.attributes.end()) {
-        mesh.ka = m_accessors.floats(a->second, comps, "_AMBIENT");
-        if (comps != 1 || mesh.ka.size() != nv)
-          fail(where + ": _AMBIENT must be SCALAR with one per vertex");
-        for (size_t v = 0; v < nv; ++v)
-          if (!(mesh.ka[v] >= 0.0f && mesh.ka[v] <= 1.0f))
-            fail(where + ": _AMBIENT (ambient coefficient) " + std::to_string(mesh.ka[v]) +
-                 " at vertex " + std::to_string(v) + " is outside [0, 1]");
-      }
-      std::vector<uint32_t> idx;
-      if (prim.indices >= 0)
-        idx = m_accessors.indices(prim.indices);
-      else {
-        idx.resize(nv);
-        for (size_t v = 0; v < nv; ++v)
-          idx[v] = uint32_t(v);
-      }
-      for (uint32_t i : idx)
-        if (i >= nv)
-          fail(where + ": vertex index " + std::to_string(i) + " out of range (" +
-               std::to_string(nv) + " vertices)");
-      mesh.indices = triangulate(idx, prim.mode, where);
-      if (flip)
-        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-          std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
-      if (mesh.normals.empty()) compute_vertex_normals(mesh);
-      bool found = false;
-      Role role = Role::Other;
-      if (const Json* jp = json_at({"meshes", size_t(node.mesh), "primitives", k, "extras"}))
-        role = parse_role(*jp, found);
-      if (!found && jmesh && jmesh->contains("extras"))
-        role = parse_role((*jmesh)["extras"], found);
-      if (found) mesh.roles.assign(mesh.triangle_count(), role);
-      if (!mesh.indices.empty()) m_scene.meshes.push_back(std::move(mesh));
+      m_scene.cameras.push_back(c);
     }
   }
 
-  std::vector<uint32_t> triangulate(const std::vector<uint32_t>& idx, int mode,
-                                    const std::string& where) {
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
-      if (idx.size() % 3 != 0)
-        m_scene.report.warn("index count",
-                            where + ": index count not a multiple of 3, extra indices ignored");
-      return std::vector<uint32_t>(idx.begin(), idx.begin() + long(idx.size() / 3 * 3));
+  // `world` without its scale (glTF cameras ignore it); false when an axis vanishes.
+  static bool rigid(const glm::dmat4& world, glm::mat4& out) {
+    glm::dmat4 m = world;
+    for (int c = 0; c < 3; ++c) {
+      const double len = glm::length(glm::dvec3(m[c]));
+      if (!(len > 1e-12) || !std::isfinite(len)) return false;
+      m[c] /= len;
     }
-    std::vector<uint32_t> out;
-    for (size_t i = 0; i + 2 < idx.size(); ++i) {
-      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)  // glTF 2.0 §3.7.2.1: odd triangles swap
-        out.insert(out.end(), {idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]});
-      else
-        out.insert(out.end(), {idx[i + 1], idx[i + 2], idx[0]});
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(m[c][r])) return false;
+    out = glm::mat4(m);
+    return true;
+  }
+
+  // A zero scale hides an instance (some exporters do that): left out, with a warning.
+  void add_instance(const InstancePlan& inst, int plant) {
+    if (plant < 0) return;  // its primitives were all points, lines or empty
+    const glm::mat4 t(inst.world);
+    const double det = glm::determinant(glm::dmat3(glm::dmat4(t)));
+    double scale = 0.0;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        scale = std::max(scale, std::abs(double(t[c][r])));
+    if (std::isfinite(det) && std::abs(det) <= 1e-12 * scale * scale * scale) {
+      m_scene.report.warn("zero scale", "instance '" + inst.name + "' of plant '" +
+                                            m_scene.plants[size_t(plant)].name +
+                                            "' has a zero scale: not drawn");
+      return;
     }
-    return out;
+    m_scene.instances.push_back({uint32_t(plant), t, inst.name});
   }
 
   // The raw JSON at a path of keys and array indices, or null.
@@ -359,28 +264,34 @@ class Reader {
     return j;
   }
 
-  void read_hierarchy() {
+  Hierarchy scene_hierarchy() const {
     const int s = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
     const Json* h = json_at({"scenes", size_t(s), "extras", "sylva_hierarchy"});
     if (!h) h = json_at({"asset", "extras", "sylva_hierarchy"});
-    if (!h) return;
+    return read_hierarchy(h);
+  }
+
+  Hierarchy read_hierarchy(const Json* h) const {
+    Hierarchy out;
+    if (!h) return out;
     if (!h->is_object()) fail("sylva_hierarchy must be an object");
-    auto array = [&](const char* key, auto& out) {
+    auto array = [&](const char* key, auto& values) {
       if (!h->contains(key) || !(*h)[key].is_array())
         fail(std::string("sylva_hierarchy.") + key + " must be an array");
       for (const Json& v : (*h)[key]) {
         if (!v.is_number()) fail(std::string("sylva_hierarchy.") + key + " must hold numbers");
         const double d = v.get<double>();
-        using T = typename std::decay_t<decltype(out)>::value_type;
+        using T = typename std::decay_t<decltype(values)>::value_type;
         if (std::is_integral_v<T> && (d != std::floor(d) || std::abs(d) > 2e9))
           fail(std::string("sylva_hierarchy.") + key + " must hold integers");
-        out.push_back(T(d));
+        values.push_back(T(d));
       }
     };
-    array("branch_parent", m_scene.hierarchy.branch_parent);
-    array("branch_diameter", m_scene.hierarchy.branch_diameter);
-    array("leaf_branch", m_scene.hierarchy.leaf_branch);
-    validate_hierarchy(m_scene.hierarchy, m_path);
+    array("branch_parent", out.branch_parent);
+    array("branch_diameter", out.branch_diameter);
+    array("leaf_branch", out.leaf_branch);
+    validate_hierarchy(out, m_path);
+    return out;
   }
 
   const std::string& m_path;
@@ -392,9 +303,10 @@ class Reader {
 };
 
 // Extensions a file may require that this reader honours (quantized attributes are read as
-// normalized integers; unlit needs nothing).
+// normalized integers; unlit needs nothing; instancing: gltf_nodes.h).
 bool supported_extension(const std::string& e) {
-  return e == "KHR_materials_unlit" || e == "KHR_mesh_quantization";
+  return e == "KHR_materials_unlit" || e == "KHR_mesh_quantization" ||
+         e == "EXT_mesh_gpu_instancing";
 }
 
 }  // namespace
@@ -431,7 +343,8 @@ Scene read_gltf(const std::string& path) {
             (missing.empty() ? "" : ", ") + (e.is_string() ? e.get<std::string>() : e.dump());
     if (!missing.empty())
       throw InputError(path, "requires unsupported glTF extension(s) " + missing +
-                                 "; supported: KHR_materials_unlit, KHR_mesh_quantization");
+                                 "; supported: KHR_materials_unlit, KHR_mesh_quantization, "
+                                 "EXT_mesh_gpu_instancing");
   }
 
   tinygltf::TinyGLTF loader;

@@ -1,7 +1,11 @@
 // Reading glTF 2.0 (.gltf with external or embedded buffers, .glb) into the scene model with
-// tinygltf: walks the default scene's node tree composing transforms, flattens every
-// triangle primitive into a world-space Mesh, reads base-colour materials and decodes their
-// textures to RGBA8, the plant hierarchy (extras "sylva_hierarchy") and per-mesh roles
+// tinygltf: walks the default scene's node tree composing transforms (gltf_nodes.h); a file
+// without repeated subtrees or EXT_mesh_gpu_instancing becomes a flat scene (every triangle
+// primitive a world-space Mesh), otherwise its plants are stored once in their own space with
+// their instances, the meshes outside every plant making one more plant with one instance at
+// the identity. Reads the cameras the nodes place, base-colour materials and decodes their
+// textures to RGBA8, the plant hierarchy (extras "sylva_hierarchy" of the scene, or of a
+// plant's root node) and per-mesh roles
 // (extras "sylva_role"), and the ambient coefficient "_AMBIENT" (SCALAR, each value in [0, 1])
 // into Mesh::ka; in files marked "sylva_color_0": "ambient" (gltf_write.h) COLOR_0 is only the
 // ka preview, so vertex colours come from COLOR_1. The result is raw: load.h's finish_scene

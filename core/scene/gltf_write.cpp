@@ -190,6 +190,70 @@ Json mesh_json(const Mesh& mesh, BinBuilder& bin, const std::vector<glm::vec3>* 
   return j;
 }
 
+Json matrix_json(const glm::mat4& m) {
+  Json out = Json::array();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      out.push_back(m[c][r]);
+  return out;
+}
+
+Json hierarchy_json(const Hierarchy& h) {
+  return {{"branch_parent", h.branch_parent},
+          {"branch_diameter", h.branch_diameter},
+          {"leaf_branch", h.leaf_branch}};
+}
+
+// An instanced scene: a node per instance (its transform as "matrix", extras "sylva_plant" =
+// the plant's name, so it reads back as that plant even when placed once), with a child node per
+// plant mesh sharing the plant's glTF meshes. The plant's hierarchy rides on its first instance's
+// node.
+void instance_nodes(const Scene& scene, const std::vector<int>& mesh_index, Json& nodes,
+                    Json& roots) {
+  std::vector<char> first(scene.plants.size(), 1);
+  for (const Instance& inst : scene.instances) {
+    const Plant& plant = scene.plants[inst.plant];
+    Json children = Json::array();
+    for (uint32_t m : plant.meshes) {
+      if (mesh_index[m] < 0) continue;
+      nodes.push_back({{"name", scene.meshes[m].name}, {"mesh", mesh_index[m]}});
+      children.push_back(nodes.size() - 1);
+    }
+    Json node = {{"name", inst.name.empty() ? plant.name : inst.name},
+                 {"extras", {{"sylva_plant", plant.name.empty() ? Json(true) : Json(plant.name)}}}};
+    if (inst.transform != glm::mat4(1.0f)) node["matrix"] = matrix_json(inst.transform);
+    if (!children.empty()) node["children"] = children;
+    if (first[inst.plant] && !plant.hierarchy.empty())
+      node["extras"]["sylva_hierarchy"] = hierarchy_json(plant.hierarchy);
+    first[inst.plant] = 0;
+    nodes.push_back(node);
+    roots.push_back(nodes.size() - 1);
+  }
+}
+
+// Scene::cameras as glTF cameras, each placed by a root node of its name; returns the cameras.
+Json camera_nodes(const Scene& scene, Json& nodes, Json& roots) {
+  Json cameras = Json::array();
+  for (const SceneCamera& c : scene.cameras) {
+    Json cam;
+    if (c.orthographic) {
+      cam = {{"type", "orthographic"},
+             {"orthographic",
+              {{"xmag", c.xmag}, {"ymag", c.ymag}, {"znear", c.znear}, {"zfar", c.zfar}}}};
+    } else {
+      Json p = {{"yfov", c.yfov}, {"znear", c.znear}};
+      if (c.aspect > 0.0f) p["aspectRatio"] = c.aspect;
+      if (c.zfar > 0.0f) p["zfar"] = c.zfar;
+      cam = {{"type", "perspective"}, {"perspective", p}};
+    }
+    cameras.push_back(cam);
+    nodes.push_back(
+        {{"name", c.name}, {"camera", cameras.size() - 1}, {"matrix", matrix_json(c.to_world)}});
+    roots.push_back(nodes.size() - 1);
+  }
+  return cameras;
+}
+
 }  // namespace
 
 void write_glb(const Scene& scene, const std::string& path, const GlbVertexData* extra) {
@@ -201,21 +265,23 @@ void write_glb(const Scene& scene, const std::string& path, const GlbVertexData*
   BinBuilder bin;
   Json gltf = {{"asset", {{"version", "2.0"}, {"generator", "sylva"}}}};
   Json meshes = Json::array(), nodes = Json::array(), node_ids = Json::array();
+  std::vector<int> mesh_index(n, -1);  // glTF mesh of each scene mesh
   for (size_t m = 0; m < n; ++m) {
     const Mesh& mesh = scene.meshes[m];
     if (mesh.positions.empty() || mesh.indices.size() < 3) continue;
     meshes.push_back(mesh_json(mesh, bin, new_normals ? &extra->normals[m] : nullptr,
                                new_ka ? &extra->ka[m] : nullptr));
+    mesh_index[m] = int(meshes.size() - 1);
+    if (scene.instanced()) continue;
     nodes.push_back({{"name", mesh.name}, {"mesh", meshes.size() - 1}});
     node_ids.push_back(nodes.size() - 1);
   }
+  if (scene.instanced()) instance_nodes(scene, mesh_index, nodes, node_ids);
+  Json cameras = camera_nodes(scene, nodes, node_ids);
   Json scene_json = {{"name", "sylva"}};
   if (!node_ids.empty()) scene_json["nodes"] = node_ids;
-  if (!scene.hierarchy.empty() || !scene.hierarchy.leaf_branch.empty()) {
-    scene_json["extras"]["sylva_hierarchy"] = {{"branch_parent", scene.hierarchy.branch_parent},
-                                               {"branch_diameter", scene.hierarchy.branch_diameter},
-                                               {"leaf_branch", scene.hierarchy.leaf_branch}};
-  }
+  if (!scene.hierarchy.empty() || !scene.hierarchy.leaf_branch.empty())
+    scene_json["extras"]["sylva_hierarchy"] = hierarchy_json(scene.hierarchy);
   if (extra && !extra->note_json.empty()) {
     Json note = Json::parse(extra->note_json, nullptr, false);
     SYLVA_CHECK(note.is_object(), "write_glb: note_json must be a JSON object");
@@ -223,10 +289,9 @@ void write_glb(const Scene& scene, const std::string& path, const GlbVertexData*
   }
   gltf["scene"] = 0;
   gltf["scenes"] = Json::array({scene_json});
-  if (!nodes.empty()) {
-    gltf["nodes"] = nodes;
-    gltf["meshes"] = meshes;
-  }
+  if (!nodes.empty()) gltf["nodes"] = nodes;
+  if (!meshes.empty()) gltf["meshes"] = meshes;
+  if (!cameras.empty()) gltf["cameras"] = cameras;
   if (!scene.materials.empty()) {
     Json mats = Json::array();
     for (const Material& m : scene.materials)

@@ -1,13 +1,18 @@
 // Writing a scene as binary glTF 2.0 (.glb): one node and mesh per Scene mesh (positions in
-// world space), materials with base colour factor/texture (PNG-embedded), alpha mode,
-// double-sidedness; the plant hierarchy (scenes[0].extras.sylva_hierarchy) and roles in
-// extras ("sylva_role" on the mesh, or on each primitive when a mesh mixes roles: such a mesh
-// then has one primitive per role and reads back as one Mesh per role). Primitive and cluster
-// ids are not stored: the loader recomputes them deterministically. Normals are written unit
-// length (an ambient coefficient encoded in their length is dropped); indices are 16-bit
-// when they fit. Output follows the rules the Khronos glTF Validator checks (POSITION
-// min/max, 4-byte aligned views, PNG textures). Written atomically (temp file + rename);
-// failures throw InputError(path, "cannot write: ...").
+// world space); an instanced scene keeps its instancing: one glTF mesh per Scene mesh (in
+// plant space) and per instance a node with its transform ("matrix") and extras
+// "sylva_plant" = the plant's name (so it reads back as that plant even when placed once),
+// with a child node per plant mesh sharing them, the plant's hierarchy on its first
+// instance's node. Scene::cameras become glTF cameras placed by root nodes of their names.
+// Materials with base colour factor/texture (PNG-embedded), alpha mode, double-sidedness; the
+// plant hierarchy (scenes[0].extras.sylva_hierarchy) and roles in extras ("sylva_role" on the
+// mesh, or on each primitive when a mesh mixes roles: such a mesh then has one primitive per
+// role and reads back as one Mesh per role). Primitive and cluster ids are not stored: the
+// loader recomputes them deterministically. Normals are written unit length (an ambient
+// coefficient encoded in their length is dropped); indices are 16-bit when they fit. Output
+// follows the rules the Khronos glTF Validator checks (POSITION min/max, 4-byte aligned views,
+// PNG textures). Written atomically (temp file + rename); failures throw
+// InputError(path, "cannot write: ...").
 //
 // Ambient coefficients (`sylva bake`, Luft et al. §3.2 ka) travel as three attributes so both
 // Sylva and other engines can use them: "_AMBIENT" (SCALAR float, ka in [0, 1]; the glTF

@@ -45,6 +45,13 @@ void add_ground_plane(Scene& scene, const glm::vec4& color) {
   m.primitive_ids.assign(triangles, primitive);
   m.cluster_ids.assign(triangles, cluster);
   m.roles.assign(triangles, Role::Ground);
+  if (scene.instanced()) {
+    // A plant of its own, placed once where it is; its cluster id in the id buffer is the
+    // one of every instance's non-foliage (core/scene/instances.h).
+    m.primitive_ids.assign(triangles, 1u);
+    scene.plants.push_back({"sylva-ground", {uint32_t(scene.meshes.size())}, {}});
+    scene.instances.push_back({uint32_t(scene.plants.size() - 1), glm::mat4(1.0f), "sylva-ground"});
+  }
   scene.meshes.push_back(std::move(m));
 }
 

@@ -25,7 +25,9 @@ inline constexpr int kGroundSegments = 64;
 // vertices used by triangles), radius kGroundRadiusInRadii * R, kGroundSegments triangles
 // fanned from its centre. Normals +Y, uvs over [0, 1]^2 (the disc's bounding square),
 // primitive id max_primitive_id() + 1, cluster id the scene's branch cluster
-// (branch_cluster_id(), or max_cluster_id() + 1 when there is none; at least 1).
+// (branch_cluster_id(), or max_cluster_id() + 1 when there is none; at least 1). In an
+// instanced scene the disc is a plant of its own ("sylva-ground", primitive id 1) with one
+// instance at the identity, drawn last.
 // An empty scene (nothing to stand on) gets no ground. A radius of 0 (a single point) gives a
 // ground of radius 1 unit.
 void add_ground_plane(Scene& scene, const glm::vec4& color);

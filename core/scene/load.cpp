@@ -9,6 +9,7 @@
 #include "core/scene/components.h"
 #include "core/scene/foliage.h"
 #include "core/scene/gltf_read.h"
+#include "core/scene/instances.h"
 #include "core/scene/mesh_read.h"
 
 namespace fs = std::filesystem;
@@ -63,11 +64,30 @@ void validate(const Scene& scene, const std::string& where) {
 
 // Zero-area triangles break face normals and ID coverage; a relative threshold keeps tiny
 // but real leaves of small-scale models.
+// The threshold of each mesh: from the whole scene's bounds, or in an instanced scene from its
+// plant's own (plant space), so a plant's triangles do not depend on the park around it.
+std::vector<double> min_areas(const Scene& scene) {
+  std::vector<double> out(scene.meshes.size(), 0.0);
+  for (size_t p = 0; p < scene.plant_count(); ++p) {
+    const std::vector<uint32_t> meshes = plant_meshes(scene, p);
+    Bounds b;
+    if (!scene.instanced()) b = scene.bounds();
+    for (uint32_t mi : meshes)
+      if (scene.instanced())
+        for (uint32_t i : scene.meshes[mi].indices)
+          b.extend(scene.meshes[mi].positions[i]);
+    const float diag = b.diagonal();
+    for (uint32_t mi : meshes)
+      out[mi] = 1e-12 * double(diag) * double(diag);
+  }
+  return out;
+}
+
 size_t drop_degenerate(Scene& scene) {
-  const float diag = scene.bounds().diagonal();
-  const double min_area = 1e-12 * double(diag) * double(diag);
+  const std::vector<double> areas = min_areas(scene);
   size_t dropped = 0;
   for (Mesh& mesh : scene.meshes) {
+    const double min_area = areas[size_t(&mesh - scene.meshes.data())];
     const size_t n = mesh.triangle_count();
     const bool has_roles = mesh.roles.size() == n;
     size_t out = 0;
@@ -92,7 +112,10 @@ size_t drop_degenerate(Scene& scene) {
     else
       mesh.roles.clear();
   }
-  std::erase_if(scene.meshes, [](const Mesh& m) { return m.indices.empty(); });
+  std::vector<char> keep(scene.meshes.size());
+  for (size_t m = 0; m < keep.size(); ++m)
+    keep[m] = !scene.meshes[m].indices.empty();
+  remove_meshes(scene, keep);
   return dropped;
 }
 
@@ -199,6 +222,9 @@ void finish_scene(Scene& scene, const LoadOptions& options, bool keep_roles) {
   const std::string where = scene.report.source.empty() ? "scene" : scene.report.source;
   validate(scene, where);
   validate_hierarchy(scene.hierarchy, where);
+  validate_instances(scene, where);
+  for (const Plant& plant : scene.plants)
+    validate_hierarchy(plant.hierarchy, where);
   scene.report.dropped_degenerate += drop_degenerate(scene);
   if (scene.triangle_count() == 0)
     throw InputError(where, scene.report.dropped_degenerate > 0

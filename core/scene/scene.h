@@ -1,6 +1,7 @@
-// The scene model every other unit works on: flattened meshes (node transforms applied),
-// materials, textures, per-triangle primitive / cluster ids and roles, the optional plant
-// hierarchy (branches with diameters, leaf -> branch), and what the loader decided and why.
+// The scene model every other unit works on: meshes (each stored once), materials, textures,
+// per-triangle primitive / cluster ids and roles, the optional plant hierarchy (branches with
+// diameters, leaf -> branch), plants and their instances (a flat scene has none: its meshes
+// are in world space), and what the loader decided and why.
 #pragma once
 
 #include <cstdint>
@@ -37,13 +38,14 @@ struct Material {
   bool double_sided = false;
 };
 
-// One triangle mesh in world space. Vertex arrays are parallel; optional ones are empty.
+// One triangle mesh, in world space (flat scene) or in its plant's space. Vertex arrays are
+// parallel; optional ones are empty.
 // Per-triangle arrays have indices.size() / 3 entries.
 struct Mesh {
   std::string name;
   int material = -1;                 // index into Scene::materials, -1 = default grey
-  std::vector<glm::vec3> positions;  // world space (scene units)
-  std::vector<glm::vec3> normals;    // world space; unit length unless an ambient
+  std::vector<glm::vec3> positions;  // scene units
+  std::vector<glm::vec3> normals;    // unit length unless an ambient
                                      // coefficient is encoded in the length (Luft et al.)
   std::vector<glm::vec2> uvs;        // optional, glTF convention (v down)
   std::vector<glm::vec4> colors;     // optional linear RGBA vertex colours
@@ -116,25 +118,73 @@ struct SceneReport {
   std::vector<Kind> m_kinds;
 };
 
+// A distinct mesh group stored once, in its own space (plant space): in glTF a node subtree
+// that occurs more than once or is marked "sylva_plant", or a mesh drawn with
+// EXT_mesh_gpu_instancing (core/scene/gltf_read.h). Every per-plant computation (the Luft
+// preprocessing, leaf clusters, their cache) runs on it alone (core/scene/instances.h).
+struct Plant {
+  std::string name;              // its root node's name, else its first mesh's
+  std::vector<uint32_t> meshes;  // indices into Scene::meshes, ascending
+  Hierarchy hierarchy;           // its own (the root node's extras "sylva_hierarchy")
+};
+
+// One placement of a plant: drawn with the plant's meshes moved by `transform`.
+struct Instance {
+  uint32_t plant = 0;         // index into Scene::plants
+  glm::mat4 transform{1.0f};  // plant space -> world space; finite, invertible
+  std::string name;           // the node's name ("" = none)
+};
+
+// A camera stored in the file (glTF: a camera placed by a node). Looks down its -Z with +Y
+// up; the image's aspect ratio replaces the file's.
+struct SceneCamera {
+  std::string name;  // the node's name, else the camera's, else "camera <i>"
+  bool orthographic = false;
+  float yfov = 0.0f;               // perspective: vertical field of view, radians, (0, pi)
+  float aspect = 0.0f;             // perspective: the file's aspect ratio, 0 = none given
+  float xmag = 0.0f, ymag = 0.0f;  // orthographic: half width and height, scene units, > 0
+  float znear = 0.0f;              // scene units: > 0 (perspective), >= 0 (orthographic)
+  float zfar = 0.0f;               // > znear; 0 = infinite (perspective only)
+  glm::mat4 to_world{1.0f};        // camera space -> world, rigid (scale removed)
+};
+
 struct Scene {
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
-  Hierarchy hierarchy;
+  Hierarchy hierarchy;  // a flat scene's (an instanced scene's plants carry their own)
   SceneReport report;
+  // Instancing. Both empty: a flat scene, every mesh in world space and drawn once (one
+  // implicit plant holding every mesh, one instance at the identity). Otherwise every mesh
+  // belongs to exactly one plant and is drawn once per instance of it.
+  std::vector<Plant> plants;
+  std::vector<Instance> instances;
+  std::vector<SceneCamera> cameras;  // in the file's node order
 
+  bool instanced() const { return !plants.empty(); }
+  size_t plant_count() const { return instanced() ? plants.size() : 1; }
+  size_t instance_count() const { return instanced() ? instances.size() : 1; }
+  // Triangles drawn: each mesh's count times its plant's instances (= triangle_count() for
+  // a flat scene).
+  size_t drawn_triangle_count() const;
+
+  // World space: over every instance.
   Bounds bounds() const;
-  Bounds bounds(Role role) const;  // bounds of the triangles with this role
+  Bounds bounds(Role role) const;         // bounds of the triangles with this role
+  Bounds bounds_except(Role role) const;  // of every other triangle (and those with no role)
   // Centred on the bounds' centre, radius = farthest used vertex: never larger than the box's
   // circumscribed sphere and, for a tall tree, noticeably tighter. Ground triangles
   // (Role::Ground) are left out when there is anything else, so a ground plane (e.g.
   // `--ground`, a few times the plant's size) does not shrink the plant in the frame.
   Sphere framing_sphere() const;
-  size_t triangle_count() const;
-  size_t vertex_count() const;
+  size_t triangle_count() const;  // stored (distinct) triangles
+  size_t vertex_count() const;    // stored vertices
+  // Over the stored meshes: each plant's own ids (an instance's ids in the id buffer are
+  // these plus its bases, core/scene/instances.h).
   uint32_t max_primitive_id() const;
   uint32_t max_cluster_id() const;
-  // The cluster id all non-foliage triangles share (trunk and branches), 0 when there are none.
+  // The cluster id all non-foliage triangles share (trunk and branches), 0 when there are none;
+  // in an instanced scene, the one id they have in the id buffer (IdLayout::branch_cluster).
   uint32_t branch_cluster_id() const;
 };
 

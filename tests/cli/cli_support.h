@@ -1,6 +1,7 @@
 // Helpers of the end-to-end CLI tests (tests/cli).
 #pragma once
 
+#include <map>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -28,5 +29,12 @@ const std::string& small_tree();
 // CV_32F, uint ones as CV_32S (the same bits); scratch files go to `dir`. An empty Mat (and a
 // test failure) when the reader fails.
 cv::Mat oiio_channels(const std::string& image, const std::string& names, const std::string& dir);
+
+// A CSV as rows of column name -> field (quoted fields may hold commas and "" quotes); a test
+// failure for a row with another number of fields than the header.
+std::vector<std::map<std::string, std::string>> parse_csv(const std::string& text);
+
+// A row's field as a number; a test failure (and 0) when the column is missing or empty.
+double number(const std::map<std::string, std::string>& row, const std::string& column);
 
 }  // namespace sylva::test

@@ -70,7 +70,7 @@ TEST(Faults, AFullDiskLeavesNothingHalfWritten) {
       "render " + tree + " --size 512 -o " + out + "/r.exr",
       "render " + tree + " --size 512 -o " + out + "/r.tiff",
       "render " + tree + " --style ink --size 512 -o " + out + "/r.svg",
-      "render " + tree + " --style ink --size 512 -o " + out + "/r.pdf",
+      "render " + tree + " --style pen --size 512 -o " + out + "/r.pdf",
       "buffers " + tree + " --size 256 --out-dir " + out + "/buffers",
       "buffers " + tree + " --size 256 --format exr --out-dir " + out + "/exr",
       "turntable " + tree + " --frames 6 --size 128 -q -o " + out + "/t.mp4",

@@ -61,49 +61,6 @@ TEST(Tradeoff, SetChoosesTheBaseSettings) {
   EXPECT_NE(row.find(",3,"), std::string::npos) << csv;  // the tau column
 }
 
-// A CSV as rows of column name -> field (quoted fields may hold commas and "" quotes).
-std::vector<std::map<std::string, std::string>> parse_csv(const std::string& text) {
-  std::vector<std::vector<std::string>> lines;
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else if (c == '\n') {
-      lines.push_back(fields);
-      fields.assign(1, "");
-    } else {
-      fields.back() += c;
-    }
-  }
-  std::vector<std::map<std::string, std::string>> rows;
-  for (size_t l = 1; l < lines.size(); ++l) {
-    EXPECT_EQ(lines[l].size(), lines[0].size()) << "line " << l;
-    std::map<std::string, std::string>& row = rows.emplace_back();
-    for (size_t f = 0; f < lines[0].size() && f < lines[l].size(); ++f)
-      row[lines[0][f]] = lines[l][f];
-  }
-  return rows;
-}
-
-double number(const std::map<std::string, std::string>& row, const std::string& column) {
-  const auto it = row.find(column);
-  EXPECT_TRUE(it != row.end() && !it->second.empty()) << column;
-  return it == row.end() || it->second.empty() ? 0.0 : std::stod(it->second);
-}
-
 const std::map<std::string, std::string>* find_row(
     const std::vector<std::map<std::string, std::string>>& rows, const std::string& model,
     const std::string& column = "", const std::string& value = "") {

@@ -1,9 +1,14 @@
 // A scene file (.glb, .gltf, .obj, .ply, .off or .stl: SYLVA_FUZZ_EXT chooses) through
 // load_scene, as `sylva render FILE` reads it. A loaded scene must hold what the renderer
 // relies on: indices in range, finite unit normals, finite positions and attributes of the
-// right lengths, valid material and texture references, textures of width * height * 4 bytes.
+// right lengths, valid material and texture references, textures of width * height * 4 bytes;
+// plants and instances that pass validate_instances with an id layout that fits 32 bits, and
+// cameras with finite, usable parameters.
 #include <cmath>
 
+#include "core/error.h"
+#include "core/scene/gltf_nodes.h"
+#include "core/scene/instances.h"
 #include "core/scene/load.h"
 #include "tests/fuzz/fuzz_support.h"
 
@@ -43,8 +48,32 @@ void check_mesh(const sylva::Scene& scene, const sylva::Mesh& m) {
     fail("mesh " + m.name + ": material index");
 }
 
+void check_instances(const sylva::Scene& scene) {
+  try {
+    sylva::validate_instances(scene, "fuzz");
+    sylva::id_layout(scene);
+  } catch (const sylva::InputError& e) {
+    fail(std::string("a loaded scene's instancing: ") + e.what());
+  }
+  if (scene.instanced() && scene.instances.size() > sylva::kMaxInstances) fail("instance count");
+}
+
+void check_cameras(const sylva::Scene& scene) {
+  for (const sylva::SceneCamera& c : scene.cameras) {
+    for (int i = 0; i < 16; ++i)
+      if (!std::isfinite(c.to_world[i / 4][i % 4])) fail("camera " + c.name + ": transform");
+    const bool ok = c.orthographic
+                        ? c.xmag > 0.0f && c.ymag > 0.0f && c.znear >= 0.0f && c.zfar > c.znear
+                        : c.yfov > 0.0f && c.yfov < 3.1416f && c.znear > 0.0f &&
+                              (c.zfar == 0.0f || c.zfar > c.znear);
+    if (!ok || !std::isfinite(c.zfar) || !std::isfinite(c.ymag)) fail("camera " + c.name);
+  }
+}
+
 void check_scene(const sylva::Scene& scene) {
   if (scene.meshes.empty()) fail("a loaded scene without meshes");
+  check_instances(scene);
+  check_cameras(scene);
   for (const sylva::Mesh& m : scene.meshes)
     check_mesh(scene, m);
   for (const sylva::Material& mat : scene.materials) {

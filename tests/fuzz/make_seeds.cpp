@@ -21,6 +21,7 @@
 #include "core/scene/glb_container.h"
 #include "core/scene/gltf_write.h"
 #include "npr/blob_keyframes.h"
+#include "samples/park.h"
 #include "styles/presets.h"
 #include "styles/style_params.h"
 #include "tests/fuzz/fuzz_scenes.h"
@@ -246,6 +247,15 @@ int main(int argc, char** argv) {
       o.kind = kind, o.leaves = 100;
       write_scene_seeds(slice(make_plant(o), 2, 60), out,
                         std::string("sample_") + plant_kind_name(kind));
+    }
+    {
+      // A scene of many plants: shared meshes, instance nodes marked sylva_plant, cameras.
+      PlantOptions o;
+      o.leaves = 100;
+      ParkOptions po;
+      po.count = 3;
+      po.width = po.depth = 10.0f;
+      write_scene_seeds(make_park({slice(make_plant(o), 2, 60)}, {"tree"}, po), out, "park");
     }
     std::vector<fs::path> assets;
     for (const auto& e : fs::directory_iterator(argv[2]))

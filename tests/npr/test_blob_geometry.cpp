@@ -98,6 +98,22 @@ TEST(ShrinkWrap, DiscGivesANearCircle) {
   EXPECT_GT(w.points[5].x, w.center.x);
 }
 
+TEST(ShrinkWrap, PointsSitOnTheRimAndMoveWithIt) {
+  // Landed points are moved back to the rim by bisection: within a pixel of it at any step, and
+  // a disc moved by a fraction of a pixel moves them by about as much, not by whole steps.
+  const cv::Mat a = disc(101, {50.5f, 50.5f}, 30.0f), b = disc(101, {52.0f, 50.5f}, 30.0f);
+  for (float step : {0.05f, 0.2f, 0.5f}) {
+    ShrinkWrapParams p;
+    p.step = step;
+    const ShrinkWrap wa = shrink_wrap(a, p), wb = shrink_wrap(b, p);
+    ASSERT_EQ(wa.points.size(), wb.points.size());
+    for (size_t i = 0; i < wa.points.size(); ++i) {
+      EXPECT_NEAR(glm::length(wa.points[i] - wa.center), 30.0f, 1.2f) << step;
+      EXPECT_LT(glm::length((wb.points[i] - wb.center) - (wa.points[i] - wa.center)), 1.6f) << step;
+    }
+  }
+}
+
 TEST(ShrinkWrap, ExtremesLandOnTheMask) {
   const cv::Mat m = leafy(120);
   for (int n : {3, 20, 200, 512})

@@ -95,13 +95,11 @@ TEST(Hatching, AnEvenlyLitPlaneGetsNoTone) {
   EXPECT_TRUE(tone_strokes(plane(), view(), none, 10.0).strokes.empty());
 }
 
-TEST(Hatching, StrokesAreAnchoredToTheSurface) {
-  const int shift = 3;
-  const StrokeDrawing a = tone_strokes(plane(), view(), hatching(), 10.0);
-  const StrokeDrawing b = tone_strokes(plane(shift), view(shift), hatching(), 10.0);
-  // Most strokes of a reappear in b moved with the surface (away from the edges, where the
-  // clipping or the frame differ).
-  int inside = 0, found = 0;
+// Of a's strokes away from the frame's edges (`inside`, where the clipping or the frame do not
+// differ), how many reappear in b moved by `shift` px to the right.
+int moved_with_the_surface(const StrokeDrawing& a, const StrokeDrawing& b, int shift, int& inside) {
+  int found = 0;
+  inside = 0;
   for (const Stroke& s : a.strokes) {
     const glm::vec2 c = 0.5f * (s.points.front() + s.points.back());
     if (c.x < 30 || c.x > kSize - 30 || c.y < 30 || c.y > kSize - 30) continue;
@@ -113,8 +111,51 @@ TEST(Hatching, StrokesAreAnchoredToTheSurface) {
         break;
       }
   }
+  return found;
+}
+
+TEST(Hatching, StrokesAreAnchoredToTheSurface) {
+  const int shift = 3;
+  const StrokeDrawing a = tone_strokes(plane(), view(), hatching(), 10.0);
+  const StrokeDrawing b = tone_strokes(plane(shift), view(shift), hatching(), 10.0);
+  // Most strokes of a reappear in b moved with the surface.
+  int inside = 0;
+  const int found = moved_with_the_surface(a, b, shift, inside);
   ASSERT_GT(inside, 20);
   EXPECT_GE(found, inside * 9 / 10) << found << " of " << inside;
+}
+
+// The plane's surface as the scene's samples: world z = -5 over |x|, |y| < 2, cluster 1.
+std::shared_ptr<const SurfaceSamples> plane_samples() {
+  auto s = std::make_shared<SurfaceSamples>();
+  const float step = 0.01f;
+  for (float y = -2.0f; y < 2.0f; y += step)
+    for (float x = -2.0f; x < 2.0f; x += step) {
+      s->positions.push_back({x + step / 2, y + step / 2, -5.0f});
+      s->normals.push_back({0, 0, 1});
+      s->areas.push_back(step * step);
+      s->clusters.push_back(1);
+    }
+  return s;
+}
+
+TEST(Hatching, WithSurfaceSamplesTheAnchorsAreTheScenes) {
+  // With the scene's samples the cubes come from the scene and the region from its projected
+  // crown: the strokes of a moved view are the same strokes, moved with the surface.
+  const int shift = 3;
+  ToneImages a_in = plane(), b_in = plane(shift);
+  a_in.samples = b_in.samples = plane_samples();
+  ToneView va = view(), vb = view(shift);
+  va.ortho = vb.ortho = true;
+  const StrokeDrawing a = tone_strokes(a_in, va, hatching(), 10.0);
+  const StrokeDrawing b = tone_strokes(b_in, vb, hatching(), 10.0);
+  int inside = 0;
+  const int found = moved_with_the_surface(a, b, shift, inside);
+  ASSERT_GT(inside, 20);
+  EXPECT_GE(found, inside * 95 / 100) << found << " of " << inside;
+  // The density still follows the ramp.
+  const std::vector<int> n = per_band(a, 4);
+  EXPECT_GT(n[3], 2 * std::max(1, n[1]));
 }
 
 TEST(Hatching, SameInputSameBytes) {

@@ -57,8 +57,9 @@ TEST(InkLines, TheOutlineIsOneClosedSilhouetteStrokeOverThePlantsOutline) {
     if (s.cls == LineClass::Silhouette) closed += s.closed;
   EXPECT_EQ(d.count(LineClass::Silhouette), 1u);
   EXPECT_EQ(closed, 1);
-  // Every pixel of the plant's outline within 1.5 % of the frame of the silhouette's ink, and
-  // 99 % of them within 2.5 px.
+  // Every pixel of the plant's outline within 2 % of the frame of the silhouette's ink, and 95 %
+  // of them within 2.5 px: the outline encloses the plant about 0.4 x detail outside its edge
+  // and rounds the notch where the sphere meets the cube (passes/ink_abstraction.h crown_field).
   StrokeDrawing outline = d;
   std::erase_if(outline.strokes, [](const Stroke& s) { return s.cls != LineClass::Silhouette; });
   const cv::Mat ink = rasterize_strokes(outline) > 0.5f;
@@ -68,8 +69,8 @@ TEST(InkLines, TheOutlineIsOneClosedSilhouetteStrokeOverThePlantsOutline) {
   cv::erode(plant, inner, cv::Mat());
   cv::distanceTransform(~ink, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   const cv::Mat rim = plant & ~inner;
-  EXPECT_EQ(cv::countNonZero(rim & (dist > 0.015f * 256)), 0);
-  EXPECT_LE(cv::countNonZero(rim & (dist > 2.5f)), cv::countNonZero(rim) / 100);
+  EXPECT_EQ(cv::countNonZero(rim & (dist > 0.02f * 256)), 0);
+  EXPECT_LE(cv::countNonZero(rim & (dist > 2.5f)), cv::countNonZero(rim) / 20);
   EXPECT_TRUE(all_finite(d));
 }
 

@@ -17,7 +17,9 @@
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "passes/watercolor.h"
+#include "passes/watercolor_textures.h"
 #include "tests/passes/watercolor_scenes.h"
+#include "tests/test_support.h"
 
 namespace sylva::test {
 namespace {
@@ -232,6 +234,38 @@ TEST(Watercolor, PaperIsGeneratedDeterministicallyOrLoaded) {
   q.paper = dir + "/missing.png";  // e.g. deleted after the preset was read
   EXPECT_THROW(watercolor(three_clusters({32, 32}).img, kIdentity, q), InputError);
   std::filesystem::remove_all(dir);
+}
+
+TEST(Watercolor, PaperFieldIsDefinedEverywhereAndLoadedPaperTiles) {
+  WatercolorParams p;
+  const watercolor_internal::PaperField paper(p, 1.0);
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = -300; y < 300; y += 3)
+    for (int x = -300; x < 300; x += 3) {
+      const float v = paper.relief(float(x) + 0.5f, float(y) + 0.5f);
+      ASSERT_GE(v, 0.0f);
+      ASSERT_LE(v, 1.0f);
+      sum += v;
+      sum2 += double(v) * v;
+      ++n;
+    }
+  const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_NEAR(mean, 0.5, 0.05);
+  EXPECT_NEAR(sd, 0.18, 0.04);
+  const watercolor_internal::PaperField again(p, 1.0);
+  EXPECT_EQ(paper.relief(-123.25f, 77.5f), again.relief(-123.25f, 77.5f));
+  const cv::Vec2f g = paper.slope(10.0f, 20.0f);
+  EXPECT_TRUE(std::isfinite(g[0]) && std::isfinite(g[1]));
+  // A loaded image repeats with its size (at the 1024 px reference, 1 image px per px).
+  const std::string dir = temp_dir("watercolor-paper-field");
+  cv::Mat img(40, 30, CV_8UC1);
+  cv::randu(img, 0, 256);
+  ASSERT_TRUE(cv::imwrite(dir + "/paper.png", img));
+  p.paper = dir + "/paper.png";
+  const watercolor_internal::PaperField tiled(p, 1.0);
+  EXPECT_NEAR(tiled.relief(5.5f, 7.5f), tiled.relief(35.5f, 47.5f), 1e-5f);
+  EXPECT_NEAR(tiled.relief(5.5f, 7.5f), tiled.relief(-24.5f, -32.5f), 1e-5f);
 }
 
 TEST(Watercolor, AlbedoPigmentNeedsTheAlbedo) {

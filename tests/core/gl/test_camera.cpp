@@ -250,5 +250,57 @@ TEST(Camera, FramingSphereIsTightAndHoldsEveryVertex) {
   EXPECT_THROW(make_orbit_camera(Scene{}.framing_sphere(), orbit(0, 0), 8, 8), InputError);
 }
 
+TEST(FileCamera, KeepsTheFilesViewFieldAndClippingWithTheImagesAspect) {
+  SceneCamera f;
+  f.yfov = glm::radians(50.0f);
+  f.znear = 0.5f;
+  f.zfar = 40.0f;
+  f.to_world = glm::inverse(glm::lookAt(glm::vec3(3, 4, 5), glm::vec3(0), glm::vec3(0, 1, 0)));
+  const Sphere sphere{glm::vec3(0.0f), 2.0f};
+  const Camera c = make_file_camera(f, sphere, 300, 100);
+  EXPECT_FALSE(c.ortho);
+  EXPECT_NEAR(glm::length(c.eye - glm::vec3(3, 4, 5)), 0.0f, 1e-5f);
+  const glm::mat4 want = glm::perspective(f.yfov, 3.0f, 0.5f, 40.0f);
+  for (int i = 0; i < 16; ++i)
+    EXPECT_NEAR(c.proj[i / 4][i % 4], want[i / 4][i % 4], 1e-6f);
+  EXPECT_EQ(c.near_plane, 0.5f);
+  EXPECT_EQ(c.far_plane, 40.0f);
+  // An infinite far plane reaches past the sphere.
+  f.zfar = 0.0f;
+  const Camera inf = make_file_camera(f, sphere, 100, 100);
+  EXPECT_GT(inf.far_plane, glm::length(glm::vec3(3, 4, 5)) + 2.0f);
+  // Orthographic: ymag kept, the width from the image.
+  f.orthographic = true;
+  f.ymag = 2.0f;
+  f.xmag = 7.0f;
+  f.znear = 0.0f;
+  f.zfar = 10.0f;
+  const Camera o = make_file_camera(f, sphere, 200, 100);
+  EXPECT_TRUE(o.ortho);
+  EXPECT_NEAR(o.proj[1][1], 1.0f / 2.0f, 1e-6f);
+  EXPECT_NEAR(o.proj[0][0], 1.0f / 4.0f, 1e-6f);
+  EXPECT_THROW(make_file_camera(f, sphere, 0, 100), InputError);
+  EXPECT_THROW(make_file_camera(f, sphere, 16385, 100), InputError);
+}
+
+TEST(Camera, LightCameraReachesCastersOutsideItsSphere) {
+  const Sphere visible{glm::vec3(0.0f), 1.0f};
+  const glm::vec3 up(0, 1, 0);
+  const Camera plain = make_light_camera(visible, up, false, 64);
+  // Without casters: exactly as before the option existed.
+  const Camera same = make_light_camera(visible, up, false, 64, Sphere{});
+  EXPECT_EQ(plain.view, same.view);
+  EXPECT_EQ(plain.proj, same.proj);
+  // A caster 10 units up (toward the light) must be in front of the near plane.
+  const Sphere casters{glm::vec3(0, 5, 0), 6.0f};
+  const Camera c = make_light_camera(visible, up, false, 64, casters);
+  const glm::vec4 top = c.view * glm::vec4(0, 10.5f, 0, 1);
+  EXPECT_GT(-top.z, c.near_plane);
+  const glm::vec4 bottom = c.view * glm::vec4(0, -1, 0, 1);
+  EXPECT_LT(-bottom.z, c.far_plane);
+  // The covered width is still the visible sphere's.
+  EXPECT_EQ(c.proj[0][0], plain.proj[0][0]);
+}
+
 }  // namespace
 }  // namespace sylva
