@@ -26,22 +26,6 @@ Role parse_role(const Json& extras, bool& found) {
   return Role::Other;
 }
 
-// The raw JSON at a path of keys and array indices, or null.
-const Json* json_at(const Json& root,
-                    std::initializer_list<std::variant<const char*, size_t>> keys) {
-  const Json* j = &root;
-  for (const auto& k : keys) {
-    if (std::holds_alternative<const char*>(k)) {
-      if (!j->is_object() || !j->contains(std::get<const char*>(k))) return nullptr;
-      j = &(*j)[std::get<const char*>(k)];
-    } else {
-      if (!j->is_array() || std::get<size_t>(k) >= j->size()) return nullptr;
-      j = &(*j)[std::get<size_t>(k)];
-    }
-  }
-  return j;
-}
-
 bool marked(const Json* j, const char* value) {
   return j && j->is_string() && *j == value;
 }
@@ -241,6 +225,21 @@ Mesh place_primitive(const LocalPrimitive& p, const glm::dmat4& transform, std::
       std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
   if (mesh.normals.empty()) compute_vertex_normals(mesh);
   return mesh;
+}
+
+const Json* json_at(const Json& root,
+                    std::initializer_list<std::variant<const char*, size_t>> keys) {
+  const Json* j = &root;
+  for (const auto& k : keys) {
+    if (std::holds_alternative<const char*>(k)) {
+      if (!j->is_object() || !j->contains(std::get<const char*>(k))) return nullptr;
+      j = &(*j)[std::get<const char*>(k)];
+    } else {
+      if (!j->is_array() || std::get<size_t>(k) >= j->size()) return nullptr;
+      j = &(*j)[std::get<size_t>(k)];
+    }
+  }
+  return j;
 }
 
 }  // namespace sylva

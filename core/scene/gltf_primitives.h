@@ -9,15 +9,21 @@
 #include <tiny_gltf.h>
 
 #include <glm/glm.hpp>
+#include <initializer_list>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/scene/gltf_accessor.h"
 #include "core/scene/scene.h"
 
 namespace sylva {
+
+// The raw JSON at a path of keys and array indices, or null.
+const nlohmann::json* json_at(const nlohmann::json& root,
+                              std::initializer_list<std::variant<const char*, size_t>> keys);
 
 // A primitive as stored: Mesh::positions and Mesh::normals in mesh space (normals not
 // normalised; empty when the file has none), Mesh::name the primitive's "[k]" suffix when its

@@ -249,19 +249,8 @@ class Reader {
     m_scene.instances.push_back({uint32_t(plant), t, inst.name});
   }
 
-  // The raw JSON at a path of keys and array indices, or null.
   const Json* json_at(std::initializer_list<std::variant<const char*, size_t>> keys) const {
-    const Json* j = &m_json;
-    for (const auto& k : keys) {
-      if (std::holds_alternative<const char*>(k)) {
-        if (!j->is_object() || !j->contains(std::get<const char*>(k))) return nullptr;
-        j = &(*j)[std::get<const char*>(k)];
-      } else {
-        if (!j->is_array() || std::get<size_t>(k) >= j->size()) return nullptr;
-        j = &(*j)[std::get<size_t>(k)];
-      }
-    }
-    return j;
+    return sylva::json_at(m_json, keys);
   }
 
   Hierarchy scene_hierarchy() const {
