@@ -13,7 +13,7 @@ namespace {
 
 constexpr int kMaxCuts = 16;                 // sub-triangles per side
 constexpr float kSpacingShare = 1.0f / 400;  // of the plant's diagonal
-// At most this many samples from an instanced scene's instances (32 bytes each).
+// At most this many samples from an instanced scene's instances (36 bytes each).
 constexpr size_t kMaxSamples = size_t(1) << 22;
 
 struct Corners {
@@ -106,6 +106,7 @@ void add_instance(const SurfaceSamples& plant, const std::vector<char>& foliage,
     out.areas.push_back(float(double(plant.areas[k]) * det * len / keep));
     const bool own = foliage[k] || branch_cluster == 0;
     out.clusters.push_back(own ? plant.clusters[k] + base.cluster : branch_cluster);
+    out.instances.push_back(uint32_t(i + 1));
   }
 }
 
@@ -139,7 +140,7 @@ SurfaceSamples sample_instances(const Scene& scene, float spacing) {
   out.spacing = spacing;
   const size_t reserve = size_t(std::min(total, double(kMaxSamples)));
   out.positions.reserve(reserve), out.normals.reserve(reserve);
-  out.areas.reserve(reserve), out.clusters.reserve(reserve);
+  out.areas.reserve(reserve), out.clusters.reserve(reserve), out.instances.reserve(reserve);
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     add_instance(plants[inst.plant], foliage[inst.plant], i, inst.transform, ids.bases[i],

@@ -84,15 +84,17 @@ struct Part {
 
 // The parts of the samples' clusters (but 0, and `wood` unless `wood_behind`) as the camera sees
 // them, nearest last; the wood first with `wood_behind`.
+// With `by_instance` the parts are the instances (their index + 1), of their foliage only.
 std::vector<Part> parts_back_to_front(const SurfaceSamples& s, const Projector& projector,
-                                      uint32_t wood, bool wood_behind) {
+                                      uint32_t wood, bool wood_behind, bool by_instance = false) {
   const uint32_t skip = wood_behind ? 0 : wood;
   std::map<uint32_t, Part> by_cluster;
   std::map<uint32_t, double> area, weighted;
   std::map<uint32_t, glm::dvec3> centre;
   Projected p;
   for (size_t i = 0; i < s.size(); ++i) {
-    const uint32_t c = s.clusters[i];
+    if (by_instance && (s.clusters[i] == 0 || s.clusters[i] == wood)) continue;
+    const uint32_t c = by_instance ? s.instances[i] : s.clusters[i];
     if (c == 0 || c == skip || !projector.project(s, i, p)) continue;
     Part& part = by_cluster[c];
     part.cluster = c;
@@ -191,6 +193,27 @@ CrownParts project_crown_parts(const SurfaceSamples& samples, const Camera& came
   parts.label = cv::Mat(camera.height, camera.width, CV_32SC1, cv::Scalar(0));
   parts.depth = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
   for (const PartMask& m : project_part_masks(samples, camera, sigma, level, wood, wood_level)) {
+    parts.order.push_back({m.cluster, m.depth, m.centre});
+    if (m.box.empty()) continue;
+    parts.label(m.box).setTo(int(m.cluster), m.mask);
+    parts.depth(m.box).setTo(m.depth, m.mask);
+  }
+  return parts;
+}
+
+CrownParts project_plant_parts(const SurfaceSamples& samples, const Camera& camera, double sigma,
+                               float level, uint32_t wood) {
+  SYLVA_CHECK(camera.width > 0 && camera.height > 0, "project_plant_parts: an empty frame");
+  SYLVA_CHECK(sigma > 0.0 && level > 0.0f && level < 1.0f,
+              "project_plant_parts: sigma > 0, level in (0, 1)");
+  CrownParts parts;
+  parts.label = cv::Mat(camera.height, camera.width, CV_32SC1, cv::Scalar(0));
+  parts.depth = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
+  if (samples.instances.size() != samples.size()) return parts;
+  const Projector projector(camera);
+  const cv::Size size(camera.width, camera.height);
+  for (const Part& part : parts_back_to_front(samples, projector, wood, false, true)) {
+    const PartMask m = part_mask(part, projector, sigma, level, size);
     parts.order.push_back({m.cluster, m.depth, m.centre});
     if (m.box.empty()) continue;
     parts.label(m.box).setTo(int(m.cluster), m.mask);

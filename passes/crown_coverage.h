@@ -73,4 +73,11 @@ struct CrownParts {
 CrownParts project_crown_parts(const SurfaceSamples& samples, const Camera& camera, double sigma,
                                float level, uint32_t wood, float wood_level = 0.0f);
 
+// The plants of a scene of many plants painted back to front, as project_crown_parts paints the
+// parts, each instance's foliage (neither cluster 0 nor `wood`) one part labelled with its
+// index + 1 (SurfaceSamples::instances): where one plant's crown stands in front of another's.
+// A scene of one plant (no instance ids) gives empty labels.
+CrownParts project_plant_parts(const SurfaceSamples& samples, const Camera& camera, double sigma,
+                               float level, uint32_t wood);
+
 }  // namespace sylva

@@ -130,6 +130,9 @@ void bind_ink_line_params(ParamSet& set, InkLineParams& p) {
   bind_class(set, "interior", "interior crown contours", p.interior);
   bind_class(set, "wood", "trunk and branch outlines", p.wood);
   bind_class(set, "detail", "leaf-level detail lines", p.detail_lines);
+  set.add_bool("lines.plants", p.plants,
+               "in a scene of many plants, outline each plant where its crown stands in front of "
+               "another's (as silhouette lines)");
 }
 
 StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
@@ -158,7 +161,8 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
     const double min_length =
         std::max(edges.min_length * scale, detail >= 2.0 || !crown ? relative * detail : 0.0);
     const float width = static_cast<float>(std::max<double>(edges.min_width, c.width * scale));
-    auto add = [&](Polyline chain, double min, float w, bool outline) {
+    // side: the depth image an interior or plant line keeps to the nearer side of (or null).
+    auto add = [&](Polyline chain, double min, float w, bool outline, const cv::Mat* side) {
       if (f * polyline_length(chain) < std::max(min, 1.0)) return;
       // The outline onto the crown field's level set, between the pixels' corners.
       if (outline && !marks.field.empty())
@@ -166,16 +170,21 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
       Polyline line = smooth_polyline(chain, sigma / f);
       for (cv::Point2f& q : line.points)
         q *= float(f);
-      if (cls == LineClass::Interior) to_nearer_side(line, marks.part_depth, f, 0.5f * w + 0.5f);
+      if (side != nullptr) to_nearer_side(line, *side, f, 0.5f * w + 0.5f);
       line = simplify_polyline(line, 0.5);
       d.strokes.push_back(make_stroke(line, cls, c, w, marks, in.depth, scale));
     };
     for (const Polyline& chain : chain_cracks(marks.of[size_t(cls)]))
-      add(chain, min_length, width, cls == LineClass::Silhouette);
+      add(chain, min_length, width, cls == LineClass::Silhouette,
+          cls == LineClass::Interior ? &marks.part_depth : nullptr);
     if (cls != LineClass::Silhouette) continue;
+    // The plants' outlines inside the crown, on the nearer plant's side.
+    if (!marks.plant_depth.empty())
+      for (const Polyline& chain : chain_cracks(marks.plants))
+        add(chain, min_length, width, false, &marks.plant_depth);
     // Thin parts of the plant: one centre line each, of the silhouette's width.
     for (const Polyline& chain : skeleton_chains(marks.thin, detail / f))
-      add(chain, detail, width, false);
+      add(chain, detail, width, false, nullptr);
   }
   return d;
 }

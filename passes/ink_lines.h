@@ -74,6 +74,9 @@ struct InkLineParams {
   LineClassParams interior{true, 1.3f, 1.0f, 0.0f, 1.0f};
   LineClassParams wood{true, 1.3f, 1.0f, 0.0f, 1.0f};
   LineClassParams detail_lines{false, 0.8f, 0.6f, 0.0f, 1.0f};
+  // lines.plants: in a scene of many plants, outline each plant where it stands in front of
+  // another (silhouette lines). Default true.
+  bool plants = true;
   const LineClassParams& of(LineClass c) const;
 };
 

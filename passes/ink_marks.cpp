@@ -172,9 +172,27 @@ struct CrownMasks {
   cv::Mat near_sil;  // within reach of the outline or of a thin part's centre line
 };
 
-// The silhouette: the crown field's outline and the thin parts' centre lines (InkMarks::thin).
-CrownMasks mark_outline(const InkWorking& w, const EdgeParams& edges, double detail, double scale,
-                        InkMarks& out) {
+// In a scene of many plants, each plant's outline where its crown stands in front of another's
+// (project_plant_parts, at the crown field's smoothing and level), inside the crown's body.
+void mark_plant_outlines(InkMarks& out, const SurfaceSamples& samples, const InkWorking& w,
+                         const cv::Mat& body, double detail, uint32_t wood) {
+  const CrownParts plants = project_plant_parts(samples, w.camera, 0.5 * detail, kCrownLevel, wood);
+  if (plants.order.size() < 2) return;
+  out.plants = Cracks(body.size());
+  out.plant_depth = plants.depth;
+  Cracks& c = out.plants;
+  cv::Mat keep;
+  const uint8_t* in = flat_u8(body, keep);
+  const int* label = plants.label.ptr<int>();
+  mark_cracks(c, [&](int p, int q) {
+    return (in[p] & in[q]) != 0 && label[p] != 0 && label[q] != 0 && label[p] != label[q];
+  });
+}
+
+// The silhouette: the crown field's outline, the plants' outlines in a scene of many plants and
+// the thin parts' centre lines (InkMarks::thin).
+CrownMasks mark_outline(const InkLineImages& in, const InkWorking& w, const EdgeParams& edges,
+                        double detail, double scale, uint32_t wood, bool plants, InkMarks& out) {
   const double px = 1.0 / w.factor;  // working px per output px
   const CrownField shape = crown_field(w.coverage, detail * px);
   out.field = shape.field;
@@ -183,6 +201,8 @@ CrownMasks mark_outline(const InkWorking& w, const EdgeParams& edges, double det
   if (edges.silhouette)
     mark_cracks(out.of[size_t(LineClass::Silhouette)],
                 [c = shape.body.ptr<uint8_t>()](int a, int b) { return c[a] != c[b]; });
+  if (edges.silhouette && plants && in.samples)
+    mark_plant_outlines(out, *in.samples, w, shape.body, detail * px, wood);
   // Wood and interior lines keep off the outline (which lies up to half the detail outside the
   // crown's leaves, crown_field), and off the centre lines of thin parts.
   cv::Mat thin_band;
@@ -283,7 +303,8 @@ InkMarks mark_ink_lines(const InkLineImages& in, const EdgeParams& edges, const 
   out.crown_scale = w.factor;
   for (LineClass c : {LineClass::Silhouette, LineClass::Interior, LineClass::Wood})
     out.of[size_t(c)] = Cracks(w.plant.size());
-  const CrownMasks masks = mark_outline(w, edges, detail, scale, out);
+  const CrownMasks masks =
+      mark_outline(in, w, edges, detail, scale, branch_cluster, p.silhouette.on && p.plants, out);
   if (p.wood.on) mark_wood_lines(w, masks, edges, out);
   if (p.interior.on && edges.depth)
     mark_interior_lines(in, w, masks, p, branch_cluster, scale, out);

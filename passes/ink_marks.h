@@ -30,6 +30,11 @@ struct InkMarks {
   // The front crown part's view depth at the working resolution (CrownParts::depth, 0 = none),
   // for drawing each interior line on its nearer side; empty without surface samples.
   cv::Mat part_depth;
+  // In a scene of many plants, each plant's outline where its crown stands in front of
+  // another's, inside the crown (silhouette lines, not snapped to the field); at the working
+  // resolution; empty Cracks otherwise.
+  Cracks plants;
+  cv::Mat plant_depth;  // the front plant's mean view depth there (0 = none), as part_depth
 };
 
 // `scale`: reference_scale of the frame (detail and widths are in px at 1024 px).

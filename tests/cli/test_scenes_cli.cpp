@@ -143,11 +143,10 @@ double failing_share(const std::string& a, const std::string& b) {
 TEST(Park, RendersTheSamePixelsAsItsFlattenedTwin) {
   const std::string dir = temp_dir("park-twin");
   EXPECT_EQ(info_json(flattened_park())["instances"], 1);
-  // ink's outline also projects the scene's surface samples (npr/surface_samples.h), placed per
-  // instance in the park and read from the flat meshes in the twin. Styles by leaf cluster
-  // (pen's regions, watercolor's washes, blobs) are not compared: the park's clusters are made
-  // per plant, the twin's over the whole scene.
-  for (const char* style : {"standard", "toon", "ink"}) {
+  // Styles by leaf cluster (pen's regions, watercolor's washes, blobs) are not compared: the
+  // park's clusters are made per plant, the twin's over the whole scene; ink outlines each plant
+  // of the park, which the twin has not (below).
+  for (const char* style : {"standard", "toon"}) {
     for (const std::string& scene : {park(), flattened_park()}) {
       const std::string out = dir + "/" + style + (scene == park() ? "-park.png" : "-flat.png");
       const RunResult r = run_sylva("render " + scene + " --style " + style +
@@ -157,6 +156,52 @@ TEST(Park, RendersTheSamePixelsAsItsFlattenedTwin) {
     EXPECT_LE(failing_share(dir + "/" + style + "-park.png", dir + "/" + style + "-flat.png"), 0.01)
         << style;
   }
+}
+
+// Line pixels (grey below 128) of `a` farther than `px` from every line pixel of `b`, as a share
+// of a's line pixels; the count of a's line pixels in `lines`.
+double lines_away_from(const std::string& a, const std::string& b, float px, int& lines) {
+  const cv::Mat x = cv::imread(a, cv::IMREAD_GRAYSCALE), y = cv::imread(b, cv::IMREAD_GRAYSCALE);
+  EXPECT_EQ(x.size(), y.size());
+  lines = 0;
+  if (x.size() != y.size() || x.empty()) return 1.0;
+  cv::Mat distance;
+  cv::distanceTransform(y >= 128, distance, cv::DIST_L2, 3);
+  int away = 0;
+  for (int r = 0; r < x.rows; ++r)
+    for (int c = 0; c < x.cols; ++c)
+      if (x.at<uint8_t>(r, c) < 128) {
+        ++lines;
+        away += distance.at<float>(r, c) > px;
+      }
+  return lines ? double(away) / double(lines) : 1.0;
+}
+
+// ink draws the park's outline where its flattened twin draws it (the same surface points, each
+// instance's placed by its transform: npr/surface_samples.h), and inside it each plant's outline
+// where its crown stands in front of another's, which the twin (one plant) has not.
+TEST(Park, InkOutlinesTheParkAsItsTwinAndEachPlantInIt) {
+  const std::string dir = temp_dir("park-ink");
+  for (const std::string& scene : {park(), flattened_park()}) {
+    const std::string out = dir + (scene == park() ? "/park.png" : "/flat.png");
+    const RunResult r =
+        run_sylva("render " + scene + " --style ink --size 640x480 --lod off -o " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  int twin_lines = 0, park_lines = 0;
+  EXPECT_LE(lines_away_from(dir + "/flat.png", dir + "/park.png", 1.5f, twin_lines), 0.01);
+  const double inside = lines_away_from(dir + "/park.png", dir + "/flat.png", 2.5f, park_lines);
+  std::printf("twin %d line px, park %d, %.3f of the park's away from the twin's lines\n",
+              twin_lines, park_lines, inside);
+  EXPECT_GT(inside, 0.08);  // the plants' own outlines (15 % here)
+  // Without them (lines.plants = false) the park draws its twin's lines.
+  const RunResult r = run_sylva("render " + park() +
+                                " --style ink --set lines.plants=false --size 640x480 --lod off "
+                                "-o " +
+                                dir + "/without.png");
+  ASSERT_EQ(r.status, 0) << r.output;
+  int without_lines = 0;
+  EXPECT_LE(lines_away_from(dir + "/without.png", dir + "/flat.png", 1.5f, without_lines), 0.01);
 }
 
 // The look at the scale of `block` px: of the block x block squares a plant touches in either

@@ -96,6 +96,32 @@ TEST(CrownCoverage, PartsArePaintedBackToFront) {
   EXPECT_EQ(w.label.at<int>(50, 50), 9);
 }
 
+// In a scene of many plants the plants are the parts: two instances' foliage (clusters 5 and 9 in
+// the first, 6 in the second, so clusters do not follow instances), their wood left out.
+TEST(CrownCoverage, PlantsArePaintedBackToFrontByInstance) {
+  SurfaceSamples s;
+  add_rectangle(s, -0.3f, 0.2f, -3.0f, 0.6f, 0.4f, 5);  // instance 1 (far): two clusters
+  add_rectangle(s, -0.3f, -0.2f, -3.0f, 0.6f, 0.4f, 9);
+  s.instances.assign(s.size(), 1u);
+  add_rectangle(s, 0.2f, 0.0f, -1.0f, 0.6f, 0.8f, 6);   // instance 2 (near), over its right side
+  add_rectangle(s, 0.2f, -0.8f, -1.0f, 0.1f, 0.2f, 7);  // its trunk (the wood cluster)
+  s.instances.resize(s.size(), 2u);
+  const Camera cam = ortho_camera(100);
+  const CrownParts p = project_plant_parts(s, cam, 1.0, 0.2f, 7);
+  ASSERT_EQ(p.order.size(), 2u);
+  EXPECT_EQ(p.order[0].cluster, 1u);  // the far plant first
+  EXPECT_EQ(p.order[1].cluster, 2u);
+  EXPECT_EQ(p.label.at<int>(50, 25), 1);  // one label over both of its clusters
+  EXPECT_EQ(p.label.at<int>(40, 25), 1);
+  EXPECT_EQ(p.label.at<int>(50, 55), 2);  // the overlap: the near plant
+  EXPECT_FLOAT_EQ(p.depth.at<float>(50, 55), 1.0f);
+  EXPECT_EQ(p.label.at<int>(90, 60), 0);  // the trunk is no plant part
+  // Samples without instance ids (a scene of one plant): no parts.
+  SurfaceSamples one = s;
+  one.instances.clear();
+  EXPECT_TRUE(project_plant_parts(one, cam, 1.0, 0.2f, 7).order.empty());
+}
+
 TEST(CrownField, FillsSmallHolesDropsSmallPiecesAndKeepsTheEdgeOut) {
   cv::Mat cover(200, 200, CV_32FC1, cv::Scalar(0));
   cover(cv::Rect(0, 40, 120, 120)).setTo(1.0f);  // cut by the frame's left edge
