@@ -126,27 +126,147 @@ void print_table(const FoliageStudy& study, const std::vector<KaEncoding>& encod
   }
 }
 
+struct TradeoffOpts {
+  SceneOptions scene;
+  std::string study, out, plot;
+  std::string fractions = "1,0.5,0.25,0.1,0.05,0.01";
+  std::string grids = "32,64,128,256";
+  std::string normal_sources = "surface,gradient";
+  std::string encodings = "length,attribute";
+  int reference_grid = 256;
+  std::string thresholds = "scaled";
+  std::string style = "standard";
+  std::vector<std::string> sets;
+  bool quiet = false;
+  AoStudyCliOptions ao;
+  KeyframeStudyCliOptions keyframes;
+  CoherenceStudyCliOptions coherence;
+  std::vector<CLI::Option*> foliage_only;
+};
+
+// The foliage study's sweep: --fractions, --grids, --normal-sources, --encodings,
+// --reference-grid and --thresholds (remembered in foliage_only, which other studies reject).
+void add_foliage_sweep_options(CLI::App& cmd, TradeoffOpts& o) {
+  const size_t before = cmd.get_options().size();
+  cmd.add_option("--fractions", o.fractions,
+                 "Shares of leaves used as generators, comma-separated, each in (0, 1]")
+      ->capture_default_str();
+  cmd.add_option("--grids", o.grids,
+                 "Marching-cubes cells along the longest axis, comma-separated, each in [2, "
+                 "1024]")
+      ->capture_default_str();
+  cmd.add_option("--normal-sources", o.normal_sources, "surface and/or gradient")
+      ->capture_default_str();
+  cmd.add_option("--encodings", o.encodings, "length and/or attribute (ka encodings)")
+      ->capture_default_str();
+  cmd.add_option("--reference-grid", o.reference_grid,
+                 "The reference's grid, [2, 1024]; raised to the largest of --grids")
+      ->capture_default_str();
+  cmd.add_option("--thresholds", o.thresholds,
+                 "tau and d-min of a run with fewer generators: scaled (the reference's times "
+                 "the share of generators, matching the expected density) or fixed (the "
+                 "reference's)")
+      ->capture_default_str();
+  const std::vector<CLI::Option*> all = cmd.get_options();
+  o.foliage_only.assign(all.begin() + long(before), all.end());
+}
+
+// The AO study's options but its view options are rejected by the studies that take a view only.
+void reject_ao_options_but_view(const TradeoffOpts& o) {
+  for (CLI::Option* opt : o.ao.options)
+    if (std::find(o.ao.view_options.begin(), o.ao.view_options.end(), opt) ==
+        o.ao.view_options.end())
+      reject_options({opt}, o.study);
+}
+
+void run_coherence(CLI::App& cmd, TradeoffOpts& o) {
+  reject_options(o.foliage_only, o.study);
+  reject_ao_options_but_view(o);
+  for (const char* name : {"--every", "--degrees", "--style"})
+    reject_options({cmd.get_option(name)}, o.study + " (use --styles and --step)");
+  run_coherence_study_command(o.scene, o.coherence, o.keyframes,
+                              cmd.get_option("--frames")->count() > 0, o.ao.view,
+                              given_foliage_options(cmd), o.sets, {o.out, o.plot, o.quiet});
+}
+
+void run_keyframes(const CLI::App& cmd, TradeoffOpts& o) {
+  reject_options(o.foliage_only, o.study);
+  reject_ao_options_but_view(o);
+  // A blobs style unless --style names another (which is then rejected).
+  if (cmd.get_option("--style")->count() == 0) o.style = "blobs";
+  const std::unique_ptr<Style> style = resolve_style(cmd, o.style, o.sets);
+  run_keyframe_study_command(o.scene, o.keyframes, o.ao.view, *style, {o.out, o.plot, o.quiet});
+}
+
+// Every option of the foliage study, checked before the scene is loaded.
+FoliageStudyOptions foliage_study_options(const CLI::App& cmd, const TradeoffOpts& o) {
+  FoliageStudyOptions so;
+  so.base = foliage_params(resolve_style(cmd, o.style, o.sets)->params().foliage, o.scene.seed);
+  so.fractions = parse_numbers<double>(o.fractions, "--fractions");
+  so.grids = parse_numbers<int>(o.grids, "--grids");
+  so.normals = parse_normal_sources(o.normal_sources);
+  so.encodings = parse_encodings(o.encodings);
+  so.reference_grid = o.reference_grid;
+  if (o.thresholds != "scaled" && o.thresholds != "fixed")
+    throw InputError("--thresholds",
+                     "unknown value '" + o.thresholds + "' (allowed: scaled, fixed)");
+  so.scale_thresholds = o.thresholds == "scaled";
+  try {
+    validate_foliage_study(so);
+  } catch (const InputError& e) {
+    throw InputError("--" + e.where(), e.reason());
+  }
+  return so;
+}
+
+void run_foliage(const CLI::App& cmd, const TradeoffOpts& o) {
+  FoliageStudyOptions so = foliage_study_options(cmd, o);
+  // The study times one preprocessing of the whole scene: an instanced one is flattened.
+  const Scene scene = flatten(load_scene_for_cli(o.scene));
+  FoliageStudy study;
+  {
+    ProgressOptions po;
+    po.quiet = o.quiet;
+    Progress progress("foliage study", foliage_study_runs(so), po);
+    so.on_run = [&progress](const std::string& what) { progress.step(what); };
+    study = run_foliage_study(scene, so);
+  }
+  const std::string name = std::filesystem::path(o.scene.path).stem().string();
+  const TradeoffOutputs outputs{o.out, o.plot, o.quiet};
+  write_study_files(outputs, foliage_study_csv(study),
+                    [&] { return plot_foliage_study(study, name); });
+  std::printf("%s: %zu leaves; reference %.2f s (rho %.4g, tau %.4g, d_min %.4g)\n", name.c_str(),
+              study.reference.leaves, study.reference_seconds, study.reference.rho,
+              study.reference.tau, study.reference.d_min);
+  print_table(study, so.encodings);
+  print_written(outputs, study.rows.size());
+}
+
+// Checks the study and outputs, then runs the study with the options it takes (the others'
+// are rejected).
+void run_tradeoff(CLI::App& cmd, TradeoffOpts& o) {
+  if (o.study != "foliage" && o.study != "ao" && o.study != "keyframes" && o.study != "coherence")
+    throw InputError("--study", "unknown study '" + o.study + "' (allowed: " + kStudies + ")");
+  check_output_path("--output", o.out, {".csv"});
+  if (!o.plot.empty()) check_output_path("--plot", o.plot, {".png"});
+  if (o.study != "coherence") reject_options(o.coherence.options, o.study);
+  if (o.study == "coherence") return run_coherence(cmd, o);
+  if (o.study == "keyframes") return run_keyframes(cmd, o);
+  reject_options(o.keyframes.options, o.study);
+  if (o.study == "ao") {
+    reject_options(o.foliage_only, o.study);
+    const std::unique_ptr<Style> style = resolve_style(cmd, o.style, o.sets);
+    run_ao_study_command(o.scene, o.ao, *style, {o.out, o.plot, o.quiet});
+    return;
+  }
+  reject_options(o.ao.options, o.study);
+  run_foliage(cmd, o);
+}
+
 }  // namespace
 
 Action add_tradeoff_command(CLI::App& app) {
-  struct Opts {
-    SceneOptions scene;
-    std::string study, out, plot;
-    std::string fractions = "1,0.5,0.25,0.1,0.05,0.01";
-    std::string grids = "32,64,128,256";
-    std::string normal_sources = "surface,gradient";
-    std::string encodings = "length,attribute";
-    int reference_grid = 256;
-    std::string thresholds = "scaled";
-    std::string style = "standard";
-    std::vector<std::string> sets;
-    bool quiet = false;
-    AoStudyCliOptions ao;
-    KeyframeStudyCliOptions keyframes;
-    CoherenceStudyCliOptions coherence;
-    std::vector<CLI::Option*> foliage_only;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<TradeoffOpts>();
   CLI::App* cmd = app.add_subcommand(
       "tradeoff",
       "Measure speed against accuracy over a parameter sweep, against a reference the "
@@ -160,28 +280,7 @@ Action add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--study", o->study, std::string("What to study: ") + kStudies)->required();
   cmd->add_option("-o,--output", o->out, "Output table (.csv)")->required();
   cmd->add_option("--plot", o->plot, "Also draw error against time (.png)");
-  const size_t before = cmd->get_options().size();
-  cmd->add_option("--fractions", o->fractions,
-                  "Shares of leaves used as generators, comma-separated, each in (0, 1]")
-      ->capture_default_str();
-  cmd->add_option("--grids", o->grids,
-                  "Marching-cubes cells along the longest axis, comma-separated, each in [2, "
-                  "1024]")
-      ->capture_default_str();
-  cmd->add_option("--normal-sources", o->normal_sources, "surface and/or gradient")
-      ->capture_default_str();
-  cmd->add_option("--encodings", o->encodings, "length and/or attribute (ka encodings)")
-      ->capture_default_str();
-  cmd->add_option("--reference-grid", o->reference_grid,
-                  "The reference's grid, [2, 1024]; raised to the largest of --grids")
-      ->capture_default_str();
-  cmd->add_option("--thresholds", o->thresholds,
-                  "tau and d-min of a run with fewer generators: scaled (the reference's times "
-                  "the share of generators, matching the expected density) or fixed (the "
-                  "reference's)")
-      ->capture_default_str();
-  const std::vector<CLI::Option*> all = cmd->get_options();
-  o->foliage_only.assign(all.begin() + long(before), all.end());
+  add_foliage_sweep_options(*cmd, *o);
   add_ao_study_options(*cmd, o->ao);
   add_keyframe_study_options(*cmd, o->keyframes);
   add_coherence_study_options(*cmd, o->coherence);
@@ -189,88 +288,7 @@ Action add_tradeoff_command(CLI::App& app) {
   // explicit options above.
   add_style_options(*cmd, o->style, o->sets);
   cmd->add_flag("-q,--quiet", o->quiet, "No progress bar");
-  return [o, cmd] {
-    if (o->study != "foliage" && o->study != "ao" && o->study != "keyframes" &&
-        o->study != "coherence")
-      throw InputError("--study", "unknown study '" + o->study + "' (allowed: " + kStudies + ")");
-    check_output_path("--output", o->out, {".csv"});
-    if (!o->plot.empty()) check_output_path("--plot", o->plot, {".png"});
-    if (o->study != "coherence") reject_options(o->coherence.options, o->study);
-    if (o->study == "coherence") {
-      reject_options(o->foliage_only, o->study);
-      for (CLI::Option* opt : o->ao.options)
-        if (std::find(o->ao.view_options.begin(), o->ao.view_options.end(), opt) ==
-            o->ao.view_options.end())
-          reject_options({opt}, o->study);
-      for (const char* name : {"--every", "--degrees", "--style"})
-        reject_options({cmd->get_option(name)}, o->study + " (use --styles and --step)");
-      run_coherence_study_command(
-          o->scene, o->coherence, o->keyframes, cmd->get_option("--frames")->count() > 0,
-          o->ao.view, given_foliage_options(*cmd), o->sets, {o->out, o->plot, o->quiet});
-      return;
-    }
-    if (o->study == "keyframes") {
-      reject_options(o->foliage_only, o->study);
-      for (CLI::Option* opt : o->ao.options)
-        if (std::find(o->ao.view_options.begin(), o->ao.view_options.end(), opt) ==
-            o->ao.view_options.end())
-          reject_options({opt}, o->study);
-      // A blobs style unless --style names another (which is then rejected).
-      if (cmd->get_option("--style")->count() == 0) o->style = "blobs";
-      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
-      run_keyframe_study_command(o->scene, o->keyframes, o->ao.view, *style,
-                                 {o->out, o->plot, o->quiet});
-      return;
-    }
-    reject_options(o->keyframes.options, o->study);
-    if (o->study == "ao") {
-      reject_options(o->foliage_only, o->study);
-      const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
-      run_ao_study_command(o->scene, o->ao, *style, {o->out, o->plot, o->quiet});
-      return;
-    }
-    reject_options(o->ao.options, o->study);
-
-    // Every option is checked before the scene is loaded.
-    FoliageStudyOptions so;
-    so.base =
-        foliage_params(resolve_style(*cmd, o->style, o->sets)->params().foliage, o->scene.seed);
-    so.fractions = parse_numbers<double>(o->fractions, "--fractions");
-    so.grids = parse_numbers<int>(o->grids, "--grids");
-    so.normals = parse_normal_sources(o->normal_sources);
-    so.encodings = parse_encodings(o->encodings);
-    so.reference_grid = o->reference_grid;
-    if (o->thresholds != "scaled" && o->thresholds != "fixed")
-      throw InputError("--thresholds",
-                       "unknown value '" + o->thresholds + "' (allowed: scaled, fixed)");
-    so.scale_thresholds = o->thresholds == "scaled";
-    try {
-      validate_foliage_study(so);
-    } catch (const InputError& e) {
-      throw InputError("--" + e.where(), e.reason());
-    }
-
-    // The study times one preprocessing of the whole scene: an instanced one is flattened.
-    const Scene scene = flatten(load_scene_for_cli(o->scene));
-    FoliageStudy study;
-    {
-      ProgressOptions po;
-      po.quiet = o->quiet;
-      Progress progress("foliage study", foliage_study_runs(so), po);
-      so.on_run = [&progress](const std::string& what) { progress.step(what); };
-      study = run_foliage_study(scene, so);
-    }
-    const std::string name = std::filesystem::path(o->scene.path).stem().string();
-    const TradeoffOutputs outputs{o->out, o->plot, o->quiet};
-    write_study_files(outputs, foliage_study_csv(study),
-                      [&] { return plot_foliage_study(study, name); });
-
-    std::printf("%s: %zu leaves; reference %.2f s (rho %.4g, tau %.4g, d_min %.4g)\n", name.c_str(),
-                study.reference.leaves, study.reference_seconds, study.reference.rho,
-                study.reference.tau, study.reference.d_min);
-    print_table(study, so.encodings);
-    print_written(outputs, study.rows.size());
-  };
+  return [o, cmd] { run_tradeoff(*cmd, *o); };
 }
 
 }  // namespace sylva::cli
