@@ -14,16 +14,13 @@
 #include "core/random.h"
 #include "core/scene/instances.h"
 #include "lod_code_version.h"  // generated: SYLVA_LOD_CODE_VERSION
+#include "npr/open_mesh.h"
 
 namespace sylva {
 
 namespace {
 
-struct Traits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+using OMesh = OpenTriMesh;
 
 // A triangle soup being decimated, with each vertex's and face's origin in the plant mesh.
 struct Decimating {
@@ -35,17 +32,6 @@ struct Decimating {
     mesh.add_property(triangle);
   }
 };
-
-// add_face refuses faces that would make an edge or vertex non-manifold; such a face gets
-// copies of its vertices (with the same sources) instead.
-bool can_add_face(const OMesh& m, const std::array<OMesh::VertexHandle, 3>& v) {
-  for (int i = 0; i < 3; ++i) {
-    if (!m.is_boundary(v[size_t(i)])) return false;
-    const auto he = m.find_halfedge(v[size_t(i)], v[size_t((i + 1) % 3)]);
-    if (he.is_valid() && !m.is_boundary(he)) return false;
-  }
-  return true;
-}
 
 void add_triangle(Decimating& d, std::vector<OMesh::VertexHandle>& handle, const Mesh& m,
                   uint32_t t) {

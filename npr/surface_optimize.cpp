@@ -15,27 +15,12 @@
 
 #include "core/error.h"
 #include "npr/implicit_surface.h"
+#include "npr/open_mesh.h"
 
 namespace sylva {
 namespace {
 
-struct MeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
-
-// add_face() refuses (and logs) faces that would make an edge or a vertex non-manifold;
-// marching cubes can produce such spots where two sheets touch at exact zeros. Those
-// faces are predicted here and get their own copies of the vertices instead.
-bool can_add_face(const Mesh& m, const std::array<Mesh::VertexHandle, 3>& v) {
-  for (int i = 0; i < 3; ++i) {
-    if (!m.is_boundary(v[size_t(i)])) return false;  // isolated vertices count as boundary
-    const auto he = m.find_halfedge(v[size_t(i)], v[size_t((i + 1) % 3)]);
-    if (he.is_valid() && !m.is_boundary(he)) return false;
-  }
-  return true;
-}
+using Mesh = OpenTriMesh;
 
 Mesh to_openmesh(const SurfaceMesh& in) {
   Mesh m;

@@ -60,7 +60,7 @@ struct SheetScene {
   std::shared_ptr<const BlobSet> blobs;  // StyleContext::blobs
   // The Luft preprocessing for one style's foliage settings; make_sheet_scene's resolves them
   // with foliage_setup (npr/illumination_pass.h). A hook, so that frames of one scene can
-  // share one preprocessing (memoize_preprocessing) and tests can stub it.
+  // share one preprocessing (memoize_preprocessing) and tests can supply a fixed one.
   std::function<IlluminationSetup(const FoliageSettings&)> foliage;
   // For styles with ao.model other than none: the scene the AO shells are fitted to (outlives
   // execute()) and the seed of the fit.
