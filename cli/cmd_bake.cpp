@@ -98,11 +98,11 @@ Action add_bake_command(CLI::App& app) {
     };
     const FoliageParams params = setup.params;
     RenderGraph graph;
-    const int shading = add_foliage_illumination_pass(graph, std::move(setup));
+    const auto shading = add_foliage_illumination_pass(graph, std::move(setup));
     graph.present(shading);
     graph.compile();
     graph.execute();
-    const auto& result = graph.get<std::shared_ptr<const VertexShading>>(shading);
+    const auto& result = graph.get(shading);
     GlbVertexData data;
     data.normals = result->normals;
     data.ka = result->ka;

@@ -49,7 +49,7 @@ namespace {
 // With ao.model other than none, the AO shell node feeds it too (not declared otherwise).
 GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, IlluminationSetup luft,
                                 uint64_t seed, NormalMode mode, const AoSettings& ao) {
-  const int shading = add_foliage_illumination_pass(graph, std::move(luft));
+  const ShadingHandle shading = add_foliage_illumination_pass(graph, std::move(luft));
   RasterSetup setup = frame.setup;
   if (mode != NormalMode::Original) setup.shading = shading;
   if (ao_model_of(ao.model) != AoShading::Model::None) {
@@ -146,72 +146,111 @@ Action add_render_command(CLI::App& app) {
   };
 }
 
+namespace {
+
+struct BuffersOpts {
+  SceneOptions scene;
+  ViewOptions view;
+  FoliageRunOptions foliage;
+  std::string normals = "original";
+  std::string style = "standard";
+  std::vector<std::string> sets;
+  std::string dir, list = "color,normal,depth,position,id,ka", graph;
+  BufferFiles files;
+};
+
+// The command's options; returns --normals (whether it was given decides the normals).
+CLI::Option* add_buffers_options(CLI::App& cmd, BuffersOpts& o) {
+  add_scene_options(cmd, o.scene);
+  add_view_options(cmd, o.view);
+  add_illumination_options(cmd, &o.foliage);
+  CLI::Option* normals =
+      cmd.add_option("--normals", o.normals,
+                     "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
+                     "Fig. 7c); default: the style's");
+  add_style_options(cmd, o.style, o.sets);
+  cmd.add_option("--out-dir", o.dir, "Output folder (created if its parent exists)")->required();
+  cmd.add_option("--buffers", o.list,
+                 "Comma-separated: color,normal,depth,position,id,ka,albedo,ao (ao: see ao.model)")
+      ->capture_default_str();
+  cmd.add_option("--id", o.view.id_kind,
+                 "Ids in the id buffer: primitive, cluster, object or material")
+      ->capture_default_str();
+  cmd.add_option("--format", o.files.format,
+                 "tiff: a file per buffer; exr: one multi-channel buffers.exr")
+      ->capture_default_str();
+  cmd.add_option("--compression", o.files.compression, "EXR compression: none, zip or piz")
+      ->capture_default_str();
+  cmd.add_option("--cryptomatte", o.files.cryptomatte,
+                 "EXR Cryptomatte layers: object, material, asset (leaf clusters), or none")
+      ->capture_default_str();
+  cmd.add_option("--graph", o.graph, "Also write the render graph as Graphviz .dot");
+  return normals;
+}
+
+// --buffers "color,depth,..." as targets; InputError naming an unknown one.
+TargetMask parse_buffer_list(const std::string& list) {
+  TargetMask wanted = 0;
+  std::stringstream ss(list);
+  for (std::string name; std::getline(ss, name, ',');) {
+    bool found = false;
+    for (Target t : kAllTargets)
+      if (name == target_name(t)) {
+        wanted |= static_cast<TargetMask>(t);
+        found = true;
+      }
+    if (!found) {
+      std::string allowed;
+      for (Target t : kAllTargets)
+        allowed += (allowed.empty() ? "" : ", ") + std::string(target_name(t));
+      throw InputError("--buffers", "unknown buffer '" + name + "' (allowed: " + allowed + ")");
+    }
+  }
+  if (wanted == 0) throw InputError("--buffers", "name at least one buffer");
+  return wanted;
+}
+
+void check_out_dir(const std::string& out_dir) {
+  const fs::path dir(out_dir);
+  std::error_code ec;
+  const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
+    throw InputError("--out-dir", "'" + out_dir + "': parent folder does not exist");
+}
+
+// The raster pass (and what feeds it) with the wanted targets presented, run.
+GBufferHandles run_buffer_graph(RenderGraph& graph, Frame& frame, const Style& style,
+                                const FoliageRun& run, uint64_t seed, NormalMode mode,
+                                TargetMask wanted) {
+  // With the style's picture-scale rho (ink.detail), as its render would use.
+  IlluminationSetup luft =
+      foliage_setup(style.foliage_settings(frame.setup.camera, frame.scene.framing_sphere()), run,
+                    seed, frame.scene);
+  luft.parameter_names = foliage_parameter_names(style.set());
+  const GBufferHandles gb =
+      add_scene_passes(graph, frame, std::move(luft), seed, mode, style.params().ao);
+  for (Target t : kAllTargets)
+    if (has(wanted, t)) graph.present(gb.of(t));
+  graph.compile();
+  graph.execute();
+  return gb;
+}
+
+}  // namespace
+
 Action add_buffers_command(CLI::App& app) {
-  struct Opts {
-    SceneOptions scene;
-    ViewOptions view;
-    FoliageRunOptions foliage;
-    std::string normals = "original";
-    std::string style = "standard";
-    std::vector<std::string> sets;
-    std::string dir, list = "color,normal,depth,position,id,ka", graph;
-    BufferFiles files;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<BuffersOpts>();
   CLI::App* cmd = app.add_subcommand(
       "buffers",
       "Write the G-buffers (lossless TIFF/PNG and 8-bit previews, or one OpenEXR) and camera.json");
-  add_scene_options(*cmd, o->scene);
-  add_view_options(*cmd, o->view);
-  add_illumination_options(*cmd, &o->foliage);
-  CLI::Option* normals =
-      cmd->add_option("--normals", o->normals,
-                      "original, realigned (Luft), or realigned-scaled (normal length = ka, Luft "
-                      "Fig. 7c); default: the style's");
-  add_style_options(*cmd, o->style, o->sets);
-  cmd->add_option("--out-dir", o->dir, "Output folder (created if its parent exists)")->required();
-  cmd->add_option("--buffers", o->list,
-                  "Comma-separated: color,normal,depth,position,id,ka,albedo,ao (ao: see ao.model)")
-      ->capture_default_str();
-  cmd->add_option("--id", o->view.id_kind,
-                  "Ids in the id buffer: primitive, cluster, object or material")
-      ->capture_default_str();
-  cmd->add_option("--format", o->files.format,
-                  "tiff: a file per buffer; exr: one multi-channel buffers.exr")
-      ->capture_default_str();
-  cmd->add_option("--compression", o->files.compression, "EXR compression: none, zip or piz")
-      ->capture_default_str();
-  cmd->add_option("--cryptomatte", o->files.cryptomatte,
-                  "EXR Cryptomatte layers: object, material, asset (leaf clusters), or none")
-      ->capture_default_str();
-  cmd->add_option("--graph", o->graph, "Also write the render graph as Graphviz .dot");
+  CLI::Option* normals = add_buffers_options(*cmd, *o);
   return [o, cmd, normals] {
     check_buffer_files(o->files);
     const std::vector<std::string> mattes = o->files.format == "exr"
                                                 ? parse_cryptomatte_list(o->files.cryptomatte)
                                                 : std::vector<std::string>{};
-    TargetMask wanted = 0;
-    std::stringstream ss(o->list);
-    for (std::string name; std::getline(ss, name, ',');) {
-      bool found = false;
-      for (Target t : kAllTargets)
-        if (name == target_name(t)) {
-          wanted |= static_cast<TargetMask>(t);
-          found = true;
-        }
-      if (!found) {
-        std::string allowed;
-        for (Target t : kAllTargets)
-          allowed += (allowed.empty() ? "" : ", ") + std::string(target_name(t));
-        throw InputError("--buffers", "unknown buffer '" + name + "' (allowed: " + allowed + ")");
-      }
-    }
-    if (wanted == 0) throw InputError("--buffers", "name at least one buffer");
-    fs::path dir(o->dir);
-    std::error_code ec;
-    fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
-      throw InputError("--out-dir", "'" + o->dir + "': parent folder does not exist");
+    const TargetMask wanted = parse_buffer_list(o->list);
+    check_out_dir(o->dir);
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     const std::unique_ptr<Style> style = resolve_style(*cmd, o->style, o->sets);
     const FoliageRun run = foliage_run(o->foliage);
@@ -220,26 +259,17 @@ Action add_buffers_command(CLI::App& app) {
     auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
     frame->setup.request.flat_albedo =
         style->params().albedo == AlbedoSource::Flat;  // ids follow --id
-    // With the style's picture-scale rho (ink.detail), as its render would use.
-    IlluminationSetup luft =
-        foliage_setup(style->foliage_settings(frame->setup.camera, frame->scene.framing_sphere()),
-                      run, o->scene.seed, frame->scene);
-    luft.parameter_names = foliage_parameter_names(style->set());
     RenderGraph graph;
-    GBufferHandles gb =
-        add_scene_passes(graph, *frame, std::move(luft), o->scene.seed, mode, style->params().ao);
-    for (Target t : kAllTargets)
-      if (has(wanted, t)) graph.present(gb.of(t));
-    graph.compile();
-    graph.execute();
+    const GBufferHandles gb =
+        run_buffer_graph(graph, *frame, *style, run, o->scene.seed, mode, wanted);
     const Camera camera = frame->setup.camera;
     const std::vector<CryptomatteImage> crypto = render_cryptomattes(*frame, mattes);
     release_frame(frame);
     write_graph(o->graph, graph);
     BufferImages buffers;
     for (Target t : kAllTargets)
-      if (has(wanted, t)) buffers.emplace_back(t, graph.get<cv::Mat>(gb.of(t)));
-    write_folder_atomic(dir.string(), [&](const std::string& staging) {
+      if (has(wanted, t)) buffers.emplace_back(t, graph.get(gb.of(t)));
+    write_folder_atomic(o->dir, [&](const std::string& staging) {
       write_buffer_files(staging, buffers, camera, o->files, crypto);
     });
     std::printf("wrote %s buffers to %s\n", o->list.c_str(), o->dir.c_str());

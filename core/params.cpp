@@ -342,31 +342,39 @@ const std::string& ParamSet::source(const std::string& key) const {
 }
 
 void ParamSet::check_values(const std::string& where) const {
-  for (size_t i = 0; i < m_specs.size(); ++i) {
-    const ParamSpec& s = m_specs[i];
-    const Binding& b = m_bindings[i];
-    switch (s.type) {
-      case ParamType::Float:
-        check_number(i, double(*b.f), where);
-        break;
-      case ParamType::Int:
-        check_number(i, double(*b.i), where);
-        break;
-      case ParamType::Bool:
-        break;
-      case ParamType::Color:
-        for (int c = 0; c < 3; ++c)
-          if (!((*b.c)[c] >= 0.0f && (*b.c)[c] <= 1.0f))
-            throw InputError(where, s.key + " must be a colour with linear channels in [0, 1]");
-        break;
-      case ParamType::Choice:
-        if (b.choice() >= s.choices.size())
-          throw InputError(where, s.key + " holds a value that is not one of " + choices_list(s));
-        break;
-      case ParamType::Text:
-        b.check(*b.s, where + ": " + s.key);
-        break;
-    }
+  for (size_t i = 0; i < m_specs.size(); ++i)
+    check_value(i, where);
+}
+
+void ParamSet::check_values() const {
+  for (size_t i = 0; i < m_specs.size(); ++i)
+    check_value(i, m_specs[i].key);
+}
+
+void ParamSet::check_value(size_t i, const std::string& where) const {
+  const ParamSpec& s = m_specs[i];
+  const Binding& b = m_bindings[i];
+  switch (s.type) {
+    case ParamType::Float:
+      check_number(i, double(*b.f), where);
+      break;
+    case ParamType::Int:
+      check_number(i, double(*b.i), where);
+      break;
+    case ParamType::Bool:
+      break;
+    case ParamType::Color:
+      for (int c = 0; c < 3; ++c)
+        if (!((*b.c)[c] >= 0.0f && (*b.c)[c] <= 1.0f))
+          throw InputError(where, s.key + " must be a colour with linear channels in [0, 1]");
+      break;
+    case ParamType::Choice:
+      if (b.choice() >= s.choices.size())
+        throw InputError(where, s.key + " holds a value that is not one of " + choices_list(s));
+      break;
+    case ParamType::Text:
+      b.check(*b.s, where == s.key ? where : where + ": " + s.key);
+      break;
   }
 }
 

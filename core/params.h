@@ -101,6 +101,8 @@ class ParamSet {
   // Checks every bound field's current value as the setters would (for fields a program
   // filled in directly); throws InputError(where, ...) naming the key.
   void check_values(const std::string& where) const;
+  // The same, each InputError naming its own key as where it is (e.g. "blobs.peaks").
+  void check_values() const;
 
  private:
   struct Binding {
@@ -117,6 +119,7 @@ class ParamSet {
                           const std::string& doc, std::function<void(size_t)> set,
                           std::function<size_t()> get);
   size_t index(const std::string& key, const std::string& where) const;
+  void check_value(size_t i, const std::string& where) const;
   void add(ParamSpec spec, Binding binding);
   void check_number(size_t i, double value, const std::string& where) const;
   std::vector<ParamSpec> m_specs;

@@ -217,9 +217,9 @@ std::string ao_memo_key(const AoSettings& s, uint64_t seed) {
          (s.solid_angle == SolidAngleModel::Exact ? "exact" : "paper") + ";" + std::to_string(seed);
 }
 
-int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
+Handle<std::shared_ptr<const AoShading>> add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
   SYLVA_CHECK(setup.scene != nullptr, "AO shading needs a scene");
-  const int out = graph.resource("ao-shading");
+  const auto out = graph.resource<std::shared_ptr<const AoShading>>("ao-shading");
   graph.add_pass("ao-shells", {}, {out}, [out, setup](PassContext& ctx) {
     std::shared_ptr<const AoShading> ao;
     const std::string key = setup.memo ? ao_memo_key(setup.settings, setup.seed) : "";
@@ -245,15 +245,16 @@ int add_ao_shading_pass(RenderGraph& graph, AoSetup setup) {
 
 namespace sylva {
 
-int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
-                          const glm::mat4& view, int rays, uint64_t seed,
-                          std::shared_ptr<AoMemo> memo) {
+Handle<cv::Mat> add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene,
+                                      Handle<cv::Mat> position, Handle<cv::Mat> normal,
+                                      const glm::mat4& view, int rays, uint64_t seed,
+                                      std::shared_ptr<AoMemo> memo) {
   SYLVA_CHECK(scene != nullptr, "ray-traced AO needs a scene");
-  const int out = graph.resource("ao-raytraced");
+  const auto out = graph.resource<cv::Mat>("ao-raytraced");
   const glm::mat4 to_world = glm::inverse(view);
   graph.add_pass("ao-raytraced", {position, normal}, {out}, [=](PassContext& ctx) {
-    const cv::Mat& pos = ctx.read<cv::Mat>(position);
-    const cv::Mat& nor = ctx.read<cv::Mat>(normal);
+    const cv::Mat& pos = ctx.read(position);
+    const cv::Mat& nor = ctx.read(normal);
     SYLVA_CHECK(pos.type() == CV_32FC3 && nor.type() == CV_32FC3 && pos.size() == nor.size(),
                 "ray-traced AO reads view-space position and normal targets");
     std::vector<glm::vec3> points, normals;

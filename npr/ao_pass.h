@@ -112,14 +112,15 @@ std::vector<glm::vec3> foliage_vertices(const Scene& scene);
 // and ellipsoid) and alpha_rho when asked (or takes them from setup.memo); for constant /
 // luft-density it only passes the model on. Throws InputError("ao.*", ...) when run on a scene
 // without foliage for hegeman-*.
-int add_ao_shading_pass(RenderGraph& graph, AoSetup setup);
+Handle<std::shared_ptr<const AoShading>> add_ao_shading_pass(RenderGraph& graph, AoSetup setup);
 
 // ao.model = raytraced: reads the raster pass's view-space "position" and "normal" targets and
 // writes "ao-raytraced" (CV_32FC1, AoReferenceScene::visibility with `rays` rays seeded by
 // `seed` at each covered pixel, moved to world space by inverse(view); background 0). With
 // `memo`, Embree's BVH over the scene is built once and shared.
-int add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene, int position, int normal,
-                          const glm::mat4& view, int rays, uint64_t seed,
-                          std::shared_ptr<AoMemo> memo = nullptr);
+Handle<cv::Mat> add_raytraced_ao_pass(RenderGraph& graph, const Scene* scene,
+                                      Handle<cv::Mat> position, Handle<cv::Mat> normal,
+                                      const glm::mat4& view, int rays, uint64_t seed,
+                                      std::shared_ptr<AoMemo> memo = nullptr);
 
 }  // namespace sylva

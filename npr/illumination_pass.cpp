@@ -79,9 +79,10 @@ void write_surface(const FoliageIllumination& r, const Scene& scene, const std::
 
 }  // namespace
 
-int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup) {
+Handle<std::shared_ptr<const VertexShading>> add_foliage_illumination_pass(
+    RenderGraph& graph, IlluminationSetup setup) {
   SYLVA_CHECK(setup.scene != nullptr, "foliage illumination needs a scene");
-  const int out = graph.resource("vertex-shading");
+  const auto out = graph.resource<std::shared_ptr<const VertexShading>>("vertex-shading");
   graph.add_pass("foliage-illumination", {}, {out}, [out, setup](PassContext& ctx) {
     if (setup.memo && *setup.memo) {
       ctx.write(out, *setup.memo);

@@ -58,6 +58,7 @@ IlluminationSetup foliage_setup(const FoliageSettings& settings, const FoliageRu
                                 uint64_t seed, const Scene& scene);
 
 // Returns the "vertex-shading" resource.
-int add_foliage_illumination_pass(RenderGraph& graph, IlluminationSetup setup);
+Handle<std::shared_ptr<const VertexShading>> add_foliage_illumination_pass(RenderGraph& graph,
+                                                                           IlluminationSetup setup);
 
 }  // namespace sylva

@@ -59,7 +59,8 @@ std::shared_ptr<const SurfaceSamples> coverage_samples(const Scene& scene, Surfa
 
 // Adds the node "surface-samples" over `scene` (outlives execute()) at coverage_spacing and
 // returns its output. memo may be null (the samples are made on every execute()).
-int add_surface_samples_pass(RenderGraph& graph, const Scene* scene,
-                             std::shared_ptr<SurfaceSampleMemo> memo = nullptr);
+using SamplesHandle = Handle<std::shared_ptr<const SurfaceSamples>>;
+SamplesHandle add_surface_samples_pass(RenderGraph& graph, const Scene* scene,
+                                       std::shared_ptr<SurfaceSampleMemo> memo = nullptr);
 
 }  // namespace sylva

@@ -50,9 +50,9 @@ cv::Mat over_background(const cv::Mat& image, const glm::vec4& background) {
   return out;
 }
 
-int add_background_pass(RenderGraph& graph, int image, const glm::vec4& background,
-                        const std::string& name) {
-  const int out = graph.resource(name);
+ImageHandle add_background_pass(RenderGraph& graph, ImageHandle image, const glm::vec4& background,
+                                const std::string& name) {
+  const auto out = graph.resource<cv::Mat>(name);
   graph.add_pass("background", {image}, {out}, [=](PassContext& ctx) {
     ctx.write(out, over_background(ctx.read<cv::Mat>(image), background));
   });

@@ -15,7 +15,7 @@ namespace sylva {
 // background: linear RGBA in [0, 1] (RasterRequest::background).
 cv::Mat over_background(const cv::Mat& premultiplied_bgra, const glm::vec4& background);
 
-int add_background_pass(RenderGraph& graph, int image, const glm::vec4& background,
-                        const std::string& name = "final");
+ImageHandle add_background_pass(RenderGraph& graph, ImageHandle image, const glm::vec4& background,
+                                const std::string& name = "final");
 
 }  // namespace sylva

@@ -18,14 +18,18 @@ void bind_blob_params(ParamSet& set, BlobParams& p) {
                 true);
   set.add_float("blobs.gap", p.gap, 0.0, 128.0, "px at 1024 px",
                 "gaps between a cluster's leaves closed before shrink-wrapping; 0 = none");
-  set.add_choice("blobs.outlines", p.outlines, {"scene", "visible", "alone"},
+  set.add_choice("blobs.outlines", p.outlines,
+                 {{"scene", BlobOutlineSource::Scene},
+                  {"visible", BlobOutlineSource::Visible},
+                  {"alone", BlobOutlineSource::Alone}},
                  "outline each cluster's part of the crown projected from the scene (holds "
                  "still in a turntable), its visible leaves (one raster pass), or the cluster "
                  "rasterised alone, hidden leaves included (one pass per cluster)");
   set.add_int("blobs.peaks", p.peaks, 1, 16, "", "Gaussian peaks of each blob's height field");
   set.add_float("blobs.peak_height", p.peak_height, 0.0, 2.0, "of the blob width",
                 "peak height: 0 flat, 1 as high as the blob is wide");
-  set.add_choice("blobs.blend_light", p.blend_light, {"directional", "point"},
+  set.add_choice("blobs.blend_light", p.blend_light,
+                 {{"directional", BlendLight::Directional}, {"point", BlendLight::Point}},
                  "the blend light whose brightness mixes wash (bright) and leaf detail (dark)");
   set.add_float("blobs.blend_right", p.blend_right, -10.0, 10.0, "of the view distance",
                 "blend light position along the camera's right vector");
@@ -54,31 +58,14 @@ void bind_blob_params(ParamSet& set, BlobParams& p) {
 
 void validate_blob_params(const BlobParams& p) {
   ParamSet set;
-  BlobParams copy;
+  BlobParams copy;  // bound at the defaults (binding checks them), then given p's values
   bind_blob_params(set, copy);
-  // Re-setting every value through the bound set applies the same range checks as a preset.
-  set.set_number("blobs.control_points", p.control_points, "blobs.control_points");
-  set.set_number("blobs.step", p.step, "blobs.step");
-  set.set_number("blobs.gap", p.gap, "blobs.gap");
-  set.set_text("blobs.outlines", p.outlines, "blobs.outlines");
-  set.set_number("blobs.peaks", p.peaks, "blobs.peaks");
-  set.set_number("blobs.peak_height", p.peak_height, "blobs.peak_height");
-  set.set_text("blobs.blend_light", p.blend_light, "blobs.blend_light");
-  set.set_number("blobs.blend_right", p.blend_right, "blobs.blend_right");
-  set.set_number("blobs.blend_up", p.blend_up, "blobs.blend_up");
-  set.set_number("blobs.blend_ambient", p.blend_ambient, "blobs.blend_ambient");
-  set.set_number("blobs.blend_diffuse", p.blend_diffuse, "blobs.blend_diffuse");
-  set.set_number("blobs.silhouette_tone", p.silhouette_tone, "blobs.silhouette_tone");
-  set.set_number("blobs.edge_width", p.edge_width, "blobs.edge_width");
-  set.set_number("blobs.edge_left", p.edge_left, "blobs.edge_left");
-  set.set_number("blobs.edge_tone", p.edge_tone, "blobs.edge_tone");
-  set.set_number("blobs.translucency", p.translucency, "blobs.translucency");
-  set.set_number("blobs.variation", p.variation, "blobs.variation");
-  set.set_number("blobs.seed", p.seed, "blobs.seed");
+  copy = p;
+  set.check_values();  // the same range checks as a preset, each error naming its key
 }
 
 bool blob_needs_position(const Lighting& lighting, const BlobParams& p) {
-  if (p.blend_light == "point") return true;
+  if (p.blend_light == BlendLight::Point) return true;
   for (const Light& l : lighting.lights)
     if (l.type == Light::Type::Point) return true;
   return false;
@@ -114,13 +101,14 @@ std::vector<BlobOutline> scene_blob_outlines(const SurfaceSamples& samples, cons
   return out;
 }
 
-int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
-                           const BlobParams& p, int samples, const Camera& camera) {
+Handle<BlobSet> add_blob_outlines_pass(RenderGraph& graph, ImageHandle id, ImageHandle depth,
+                                       uint32_t branch_cluster, const BlobParams& p,
+                                       SamplesHandle samples, const Camera& camera) {
   validate_blob_params(p);
-  const int out = graph.resource("blob-outlines");
-  if (samples >= 0) {
+  const auto out = graph.resource<BlobSet>("blob-outlines");
+  if (samples.valid()) {
     graph.add_pass("blob-outlines", {samples}, {out}, [=](PassContext& ctx) {
-      const auto& s = ctx.read<std::shared_ptr<const SurfaceSamples>>(samples);
+      const auto& s = ctx.read(samples);
       ctx.write(out, still_blob_set(scene_blob_outlines(*s, camera, branch_cluster, p)));
     });
     return out;
@@ -134,23 +122,23 @@ int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branc
   return out;
 }
 
-int add_blobs_pass(RenderGraph& graph, int outlines, const BlobResources& r, const BlobFrame& frame,
-                   const BlobParams& p) {
+ImageHandle add_blobs_pass(RenderGraph& graph, Handle<BlobSet> outlines, const BlobResources& r,
+                           const BlobFrame& frame, const BlobParams& p) {
   validate_blob_params(p);
-  const int out = graph.resource("blobs");
-  std::vector<int> reads = {outlines, r.color, r.albedo, r.id};
+  const auto out = graph.resource<cv::Mat>("blobs");
+  std::vector<ResourceRef> reads = {outlines, r.color, r.albedo, r.id};
   const bool position = blob_needs_position(frame.lighting, p);
-  SYLVA_CHECK(!position || r.position >= 0, "blobs: a point light needs the position buffer");
+  SYLVA_CHECK(!position || r.position.valid(), "blobs: a point light needs the position buffer");
   if (position) reads.push_back(r.position);
-  if (r.lines >= 0) reads.push_back(r.lines);
+  if (r.lines.valid()) reads.push_back(r.lines);
   graph.add_pass("blobs", reads, {out}, [=](PassContext& ctx) {
     BlobImages in;
     in.color = ctx.read<cv::Mat>(r.color);
     in.albedo = ctx.read<cv::Mat>(r.albedo);
     in.id = ctx.read<cv::Mat>(r.id);
     if (position) in.position = ctx.read<cv::Mat>(r.position);
-    if (r.lines >= 0) in.lines = ctx.read<cv::Mat>(r.lines);
-    ctx.write(out, paint_blobs(in, ctx.read<BlobSet>(outlines), frame, p));
+    if (r.lines.valid()) in.lines = ctx.read(r.lines);
+    ctx.write(out, paint_blobs(in, ctx.read(outlines), frame, p));
   });
   return out;
 }

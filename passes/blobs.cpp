@@ -154,7 +154,7 @@ BlobLook blob_look(const ClusterMeans& m, uint32_t cluster, const std::vector<Vi
   const glm::vec3 at(static_cast<float>(m.position[0]), static_cast<float>(m.position[1]),
                      static_cast<float>(m.position[2]));
   look.blend_dir = glm::normalize(glm::vec3(p.blend_right, p.blend_up, 1.0f));
-  if (p.blend_light == "point") {
+  if (p.blend_light == BlendLight::Point) {
     const float d = std::max(-at.z, 1e-6f);
     look.blend_dir = toward({glm::vec3(p.blend_right * d, p.blend_up * d, 0.0f), true, {}}, at);
   }

@@ -39,6 +39,11 @@
 
 namespace sylva {
 
+// blobs.outlines (BlobParams::outlines).
+enum class BlobOutlineSource { Scene, Visible, Alone };
+// blobs.blend_light (BlobParams::blend_light).
+enum class BlendLight { Directional, Point };
+
 struct BlobParams {
   // blobs.control_points, blobs.step: the shrink-wrap (npr/shrink_wrap.h). [3, 512], default
   // 20; (0, 1], default 0.2.
@@ -56,7 +61,7 @@ struct BlobParams {
   // visible leaves from the frame's one cluster-id raster pass; "alone" rasterises each
   // cluster on its own (hidden leaves included, Dudley §4.2.1) for its outline and nearest
   // depth: one more pass per cluster (styles/blob_raster.h).
-  std::string outlines = "scene";
+  BlobOutlineSource outlines = BlobOutlineSource::Scene;
   // blobs.peaks: Gaussian peaks of the height field (Dudley uses 3). [1, 16]; default 3.
   int peaks = 3;
   // blobs.peak_height: peak height as a fraction of the blob's width: 0 flat, 1 as high as
@@ -64,7 +69,7 @@ struct BlobParams {
   float peak_height = 0.5f;
   // blobs.blend_light: "directional" (toward right, up, 1 in view space) or "point" (at
   // right x d, up x d beside the eye, d = the blob's depth), Dudley §6.3.
-  std::string blend_light = "directional";
+  BlendLight blend_light = BlendLight::Directional;
   // blobs.blend_right, blobs.blend_up: the blend light's place relative to the view, as
   // fractions of the viewing distance along the camera's right and up vectors. [-10, 10];
   // default 1 and 1 (Dudley §7: right 1, up 1).
@@ -130,7 +135,7 @@ cv::Mat paint_blobs(const BlobImages& in, const BlobSet& blobs, const BlobFrame&
                     const BlobParams& p);
 
 struct BlobResources {
-  int color = -1, albedo = -1, id = -1, depth = -1, position = -1, lines = -1;
+  ImageHandle color{}, albedo{}, id{}, depth{}, position{}, lines{};
 };
 
 // The ShrinkWrapParams of p, and blobs.gap as the closing radius in px for an image of `size`.
@@ -145,10 +150,11 @@ std::vector<BlobOutline> scene_blob_outlines(const SurfaceSamples& samples, cons
 
 // Adds "blob-outlines" (reads id and depth, or with `samples` >= 0 the "surface-samples" seen
 // by `camera`; writes the frame's BlobSet) and returns it.
-int add_blob_outlines_pass(RenderGraph& graph, int id, int depth, uint32_t branch_cluster,
-                           const BlobParams& p, int samples = -1, const Camera& camera = {});
+Handle<BlobSet> add_blob_outlines_pass(RenderGraph& graph, ImageHandle id, ImageHandle depth,
+                                       uint32_t branch_cluster, const BlobParams& p,
+                                       SamplesHandle samples = {}, const Camera& camera = {});
 // Adds "blobs" (reads `outlines` and the images above) and returns "blobs".
-int add_blobs_pass(RenderGraph& graph, int outlines, const BlobResources& r, const BlobFrame& frame,
-                   const BlobParams& p);
+ImageHandle add_blobs_pass(RenderGraph& graph, Handle<BlobSet> outlines, const BlobResources& r,
+                           const BlobFrame& frame, const BlobParams& p);
 
 }  // namespace sylva

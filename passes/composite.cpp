@@ -109,9 +109,9 @@ cv::Mat make_paper(const cv::Size& size, const PaperParams& p) {
   return paper;
 }
 
-int add_paper_pass(RenderGraph& g, int size_of, const PaperParams& p) {
+ImageHandle add_paper_pass(RenderGraph& g, ImageHandle size_of, const PaperParams& p) {
   check_paper(p);
-  const int out = g.resource("paper");
+  const auto out = g.resource<cv::Mat>("paper");
   g.add_pass("paper", {size_of}, {out}, [p, size_of, out](PassContext& ctx) {
     ctx.write(out, make_paper(ctx.read<cv::Mat>(size_of).size(), p));
   });
@@ -181,9 +181,10 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
   return out;
 }
 
-int add_ink_composite_pass(RenderGraph& g, int lines, int coverage_or_color, const InkParams& p) {
-  const int paper = add_paper_pass(g, coverage_or_color, p.paper);
-  const int out = g.resource("ink");
+ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
+                                   const InkParams& p) {
+  const ImageHandle paper = add_paper_pass(g, coverage_or_color, p.paper);
+  const auto out = g.resource<cv::Mat>("ink");
   g.add_pass(
       "ink-composite", {lines, coverage_or_color, paper}, {out},
       [lines, coverage_or_color, paper, out, p](PassContext& ctx) {

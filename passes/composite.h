@@ -40,7 +40,7 @@ struct PaperParams {
 cv::Mat make_paper(const cv::Size& size, const PaperParams& p);
 
 // Adds the pass "paper" (reads `size_of`, any cv::Mat, for its size) and returns "paper".
-int add_paper_pass(RenderGraph& g, int size_of, const PaperParams& p);
+ImageHandle add_paper_pass(RenderGraph& g, ImageHandle size_of, const PaperParams& p);
 
 struct InkParams {
   PaperParams paper;  // ink.paper_color, ink.grain, ink.grain_size, ink.seed
@@ -66,6 +66,7 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
 
 // Adds the paper pass and the pass "ink-composite"; returns its output "ink" (cv::Mat
 // CV_8UC4 BGRA sRGB).
-int add_ink_composite_pass(RenderGraph& g, int lines, int coverage_or_color, const InkParams& p);
+ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
+                                   const InkParams& p);
 
 }  // namespace sylva

@@ -54,12 +54,12 @@ cv::Mat detect_edges(const EdgeImages& in, const EdgeParams& p) {
   return draw_edge_lines(marks, in.depth, fg, p);
 }
 
-int add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p) {
-  std::vector<int> reads;
-  EdgeResources used;  // what the pass reads; the rest stays -1
-  auto need = [&](int EdgeResources::*field, bool wanted, const char* what) {
+ImageHandle add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p) {
+  std::vector<ResourceRef> reads;
+  EdgeResources used;  // what the pass reads; the rest stays none
+  auto need = [&](ImageHandle EdgeResources::*field, bool wanted, const char* what) {
     if (!wanted) return;
-    SYLVA_CHECK(in.*field >= 0, std::string("edges pass needs the ") + what + " resource");
+    SYLVA_CHECK((in.*field).valid(), std::string("edges pass needs the ") + what + " resource");
     used.*field = in.*field;
     reads.push_back(in.*field);
   };
@@ -68,14 +68,14 @@ int add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p)
   need(&EdgeResources::id, p.uses_id(), "id");
   // Coverage: the colour's alpha when given; else whatever geometric buffer is read anyway;
   // and with nothing read at all, one image for the output size.
-  if ((p.silhouette || reads.empty()) && in.color >= 0) {
+  if ((p.silhouette || reads.empty()) && in.color.valid()) {
     used.color = in.color;
     reads.push_back(in.color);
   }
   if (reads.empty()) {
-    for (int EdgeResources::*field :
+    for (ImageHandle EdgeResources::*field :
          {&EdgeResources::depth, &EdgeResources::id, &EdgeResources::normal})
-      if (in.*field >= 0) {
+      if ((in.*field).valid()) {
         used.*field = in.*field;
         reads.push_back(in.*field);
         break;
@@ -83,13 +83,13 @@ int add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p)
   }
   SYLVA_CHECK(!reads.empty(), "edges pass has no input resource");
 
-  const int out = g.resource("edges");
+  const auto out = g.resource<cv::Mat>("edges");
   g.add_pass("edges", reads, {out}, [used, p, out](PassContext& ctx) {
     EdgeImages images;
-    if (used.normal >= 0) images.normal = ctx.read<cv::Mat>(used.normal);
-    if (used.depth >= 0) images.depth = ctx.read<cv::Mat>(used.depth);
-    if (used.id >= 0) images.id = ctx.read<cv::Mat>(used.id);
-    if (used.color >= 0) images.color = ctx.read<cv::Mat>(used.color);
+    if (used.normal.valid()) images.normal = ctx.read<cv::Mat>(used.normal);
+    if (used.depth.valid()) images.depth = ctx.read<cv::Mat>(used.depth);
+    if (used.id.valid()) images.id = ctx.read<cv::Mat>(used.id);
+    if (used.color.valid()) images.color = ctx.read<cv::Mat>(used.color);
     ctx.write(out, detect_edges(images, p));
   });
   return out;

@@ -155,12 +155,12 @@ cv::Mat detect_edges(const EdgeImages& in, const EdgeParams& p);
 // Render-graph handles of the G-buffer images the edges pass may read (-1 = not available).
 // With color = -1 the silhouette takes coverage from a geometric buffer it reads anyway.
 struct EdgeResources {
-  int normal = -1, depth = -1, id = -1, color = -1;
+  ImageHandle normal{}, depth{}, id{}, color{};
 };
 
 // Adds the pass "edges", reading only what the enabled kinds of `p` need, and returns its
 // output resource "edges" (cv::Mat CV_32FC1). A missing handle the parameters need is a
 // programming error (SYLVA_CHECK).
-int add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p);
+ImageHandle add_edges_pass(RenderGraph& g, const EdgeResources& in, const EdgeParams& p);
 
 }  // namespace sylva

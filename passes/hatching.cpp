@@ -26,9 +26,11 @@ std::string number_text(float v) {  // a parameter value as the user wrote it ("
 }  // namespace
 
 void bind_pen_params(ParamSet& set, PenParams& p) {
-  set.add_choice("pen.tone", p.tone, {"none", "hatching", "stipple"},
-                 "tone drawn with strokes where the shaded colour (realigned normals, ka) is "
-                 "dark");
+  set.add_choice(
+      "pen.tone", p.tone,
+      {{"none", PenTone::None}, {"hatching", PenTone::Hatching}, {"stipple", PenTone::Stipple}},
+      "tone drawn with strokes where the shaded colour (realigned normals, ka) is "
+      "dark");
   set.add_float("pen.spacing", p.spacing, 2.0, 64.0, "px at 1024 px",
                 "distance between neighbouring tone strokes at full darkness");
   set.add_float("pen.length", p.length, 1.0, 128.0, "px at 1024 px", "hatching stroke length");
@@ -359,7 +361,7 @@ cv::Mat stroke_region(const ToneImages& in, const ToneView& view, const cv::Mat&
 bool tone_mark(const Anchor& a, int layer, const PenParams& p, double length, const cv::Mat& inside,
                Stroke& s) {
   const cv::Point2f centre(a.cx, a.cy);
-  if (p.tone == "stipple") {
+  if (p.tone == PenTone::Stipple) {
     s.points = {{centre.x, centre.y}};
     return true;
   }
@@ -382,7 +384,7 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   StrokeDrawing d;
   d.size = size;
   if (!p.enabled() || view.units_per_px <= 0.0) return d;
-  SYLVA_CHECK(p.tone == "hatching" || p.tone == "stipple", "pen.tone: unknown " + p.tone);
+  SYLVA_CHECK(p.tone == PenTone::Hatching || p.tone == PenTone::Stipple, "pen.tone: unknown");
   cv::Mat alpha, plant;
   cv::extractChannel(in.color, alpha, 3);
   plant = alpha >= 128;
@@ -407,7 +409,7 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   // frame). Layer 0 everywhere with tone; layer 1, crossing it, where the tone passes
   // pen.cross, with its own ranks, so the crossing strokes do not sit on the first layer's.
   const std::vector<double> per_cell = candidates_per_cell(anchors, size, spacing);
-  for (int layer = 0; layer < (p.tone == "hatching" && p.cross < 1.0f ? 2 : 1); ++layer)
+  for (int layer = 0; layer < (p.tone == PenTone::Hatching && p.cross < 1.0f ? 2 : 1); ++layer)
     for (size_t i = 0; i < anchors.size(); ++i) {
       const Anchor& a = anchors[i];
       const double darkness = tone.dark.at<float>(a.y, a.x);
@@ -421,20 +423,20 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
   return d;
 }
 
-int add_tone_pass(RenderGraph& g, const ToneResources& in, const ToneView& view, const PenParams& p,
-                  double detail) {
-  SYLVA_CHECK(in.position >= 0 && in.color >= 0,
+Handle<StrokeDrawing> add_tone_pass(RenderGraph& g, const ToneResources& in, const ToneView& view,
+                                    const PenParams& p, double detail) {
+  SYLVA_CHECK(in.position.valid() && in.color.valid(),
               "tone pass needs the position and color resources");
-  std::vector<int> reads = {in.position, in.color};
-  if (in.id >= 0) reads.push_back(in.id);
-  if (in.samples >= 0) reads.push_back(in.samples);
-  const int out = g.resource("tone-strokes");
+  std::vector<ResourceRef> reads = {in.position, in.color};
+  if (in.id.valid()) reads.push_back(in.id);
+  if (in.samples.valid()) reads.push_back(in.samples);
+  const auto out = g.resource<StrokeDrawing>("tone-strokes");
   g.add_pass("tone-strokes", reads, {out}, [=](PassContext& ctx) {
     ToneImages images;
     images.position = ctx.read<cv::Mat>(in.position);
     images.color = ctx.read<cv::Mat>(in.color);
-    if (in.id >= 0) images.id = ctx.read<cv::Mat>(in.id);
-    if (in.samples >= 0)
+    if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
+    if (in.samples.valid())
       images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
     ctx.write(out, tone_strokes(images, view, p, detail));
   });

@@ -49,9 +49,12 @@
 
 namespace sylva {
 
+// pen.tone (PenParams::tone).
+enum class PenTone { None, Hatching, Stipple };
+
 struct PenParams {
   // pen.tone: none | hatching | stipple. Default none (the `pen` preset: hatching).
-  std::string tone = "none";
+  PenTone tone = PenTone::None;
   // pen.spacing: px at 1024 px between neighbouring strokes at full darkness. [2, 64]; 7.
   float spacing = 7.0f;
   // pen.length: px at 1024 px of a hatching stroke. [1, 128]; 16.
@@ -80,7 +83,7 @@ struct PenParams {
   float opacity = 1.0f;
   // pen.seed: the anchors' and angles' random seed. [0, 2147483647]; 1.
   int seed = 1;
-  bool enabled() const { return tone != "none"; }
+  bool enabled() const { return tone != PenTone::None; }
 };
 
 // Binds pen.* with ranges, units and docs. `set` refers into `p`.
@@ -117,12 +120,12 @@ StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const Pen
 cv::Mat tone_darkness(const cv::Mat& color);
 
 struct ToneResources {
-  int position = -1, id = -1, color = -1;
-  int samples = -1;  // "surface-samples", or -1
+  ImageHandle position{}, id{}, color{};
+  SamplesHandle samples{};  // "surface-samples", or none
 };
 
 // Adds the pass "tone-strokes" and returns its output (StrokeDrawing).
-int add_tone_pass(RenderGraph& g, const ToneResources& in, const ToneView& view, const PenParams& p,
-                  double detail);
+Handle<StrokeDrawing> add_tone_pass(RenderGraph& g, const ToneResources& in, const ToneView& view,
+                                    const PenParams& p, double detail);
 
 }  // namespace sylva

@@ -189,22 +189,23 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
   return d;
 }
 
-int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgeParams& edges,
-                       const InkLineParams& p, uint32_t branch_cluster) {
-  SYLVA_CHECK(in.color >= 0 && in.depth >= 0, "ink lines need the color and depth resources");
-  const bool normals = edges.normal && (p.detail <= 0.0f || p.detail_lines.on) && in.normal >= 0;
-  std::vector<int> reads = {in.color, in.depth};
+Handle<StrokeDrawing> add_ink_lines_pass(RenderGraph& g, const InkLineResources& in,
+                                         const EdgeParams& edges, const InkLineParams& p,
+                                         uint32_t branch_cluster) {
+  SYLVA_CHECK(in.color.valid() && in.depth.valid(), "ink lines need the color and depth resources");
+  const bool normals = edges.normal && (p.detail <= 0.0f || p.detail_lines.on) && in.normal.valid();
+  std::vector<ResourceRef> reads = {in.color, in.depth};
   if (normals) reads.push_back(in.normal);
-  if (in.id >= 0) reads.push_back(in.id);
-  if (in.samples >= 0) reads.push_back(in.samples);
-  const int out = g.resource("ink-strokes");
+  if (in.id.valid()) reads.push_back(in.id);
+  if (in.samples.valid()) reads.push_back(in.samples);
+  const auto out = g.resource<StrokeDrawing>("ink-strokes");
   g.add_pass("ink-strokes", reads, {out}, [=](PassContext& ctx) {
     InkLineImages images;
     images.color = ctx.read<cv::Mat>(in.color);
     images.depth = ctx.read<cv::Mat>(in.depth);
     if (normals) images.normal = ctx.read<cv::Mat>(in.normal);
-    if (in.id >= 0) images.id = ctx.read<cv::Mat>(in.id);
-    if (in.samples >= 0) {
+    if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
+    if (in.samples.valid()) {
       images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
       images.camera = in.camera;
     }
@@ -215,8 +216,9 @@ int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgePar
   return out;
 }
 
-int add_merge_strokes_pass(RenderGraph& g, int first, int second) {
-  const int out = g.resource("drawing");
+Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawing> first,
+                                             Handle<StrokeDrawing> second) {
+  const auto out = g.resource<StrokeDrawing>("drawing");
   g.add_pass("drawing", {first, second}, {out}, [=](PassContext& ctx) {
     StrokeDrawing d = ctx.read<StrokeDrawing>(first);
     const StrokeDrawing& b = ctx.read<StrokeDrawing>(second);
@@ -227,8 +229,8 @@ int add_merge_strokes_pass(RenderGraph& g, int first, int second) {
   return out;
 }
 
-int add_stroke_raster_pass(RenderGraph& g, int strokes) {
-  const int out = g.resource("lines");
+ImageHandle add_stroke_raster_pass(RenderGraph& g, Handle<StrokeDrawing> strokes) {
+  const auto out = g.resource<cv::Mat>("lines");
   g.add_pass("stroke-raster", {strokes}, {out}, [=](PassContext& ctx) {
     ctx.write(out, rasterize_strokes(ctx.read<StrokeDrawing>(strokes)));
   });

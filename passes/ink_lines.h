@@ -102,21 +102,23 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
                                const InkLineParams& p, uint32_t branch_cluster);
 
 struct InkLineResources {
-  int color = -1, depth = -1, normal = -1, id = -1;
-  int samples = -1;  // "surface-samples" (npr/surface_samples.h), or -1
-  Camera camera;     // the frame's, with samples
+  ImageHandle color{}, depth{}, normal{}, id{};
+  SamplesHandle samples{};  // "surface-samples" (npr/surface_samples.h), or none
+  Camera camera;            // the frame's, with samples
 };
 
 // Adds the pass "ink-strokes" and returns its output "ink-strokes" (StrokeDrawing).
-int add_ink_lines_pass(RenderGraph& g, const InkLineResources& in, const EdgeParams& edges,
-                       const InkLineParams& p, uint32_t branch_cluster);
+Handle<StrokeDrawing> add_ink_lines_pass(RenderGraph& g, const InkLineResources& in,
+                                         const EdgeParams& edges, const InkLineParams& p,
+                                         uint32_t branch_cluster);
 
 // Adds the pass "drawing" and returns its output "drawing": the StrokeDrawing `first` with the
 // strokes of `second` drawn after (over) them.
-int add_merge_strokes_pass(RenderGraph& g, int first, int second);
+Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawing> first,
+                                             Handle<StrokeDrawing> second);
 
 // Adds the pass "stroke-raster" reading a StrokeDrawing resource and returns "lines", its ink
 // coverage (CV_32FC1 in [0, 1], core/stroke_render.h).
-int add_stroke_raster_pass(RenderGraph& g, int strokes);
+ImageHandle add_stroke_raster_pass(RenderGraph& g, Handle<StrokeDrawing> strokes);
 
 }  // namespace sylva

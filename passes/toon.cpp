@@ -425,22 +425,22 @@ cv::Mat toon_shade(const ToonImages& in, const Lighting& lights, const glm::mat4
   return out;
 }
 
-int add_toon_pass(RenderGraph& graph, const ToonResources& res, const Lighting& lights,
-                  const glm::mat4& view, const ToonParams& p) {
+ImageHandle add_toon_pass(RenderGraph& graph, const ToonResources& res, const Lighting& lights,
+                          const glm::mat4& view, const ToonParams& p) {
   validate_toon_params(p);
   validate_lighting(lights);
-  SYLVA_CHECK(res.normal >= 0 && res.albedo >= 0, "toon pass needs the normal and albedo");
-  const bool use_ka = res.ka >= 0 && p.ka_weight > 0.0f;
+  SYLVA_CHECK(res.normal.valid() && res.albedo.valid(), "toon pass needs the normal and albedo");
+  const bool use_ka = res.ka.valid() && p.ka_weight > 0.0f;
   const bool need_pos = toon_needs_position(lights, p);
-  SYLVA_CHECK(!need_pos || res.position >= 0,
+  SYLVA_CHECK(!need_pos || res.position.valid(),
               "toon pass: point lights and toon.cast_shadows need the position resource");
-  SYLVA_CHECK(!p.cast_shadows || res.shadow >= 0,
+  SYLVA_CHECK(!p.cast_shadows || res.shadow.valid(),
               "toon pass: toon.cast_shadows needs a shadow-map resource");
-  std::vector<int> reads = {res.normal, res.albedo};
+  std::vector<ResourceRef> reads = {res.normal, res.albedo};
   if (use_ka) reads.push_back(res.ka);
   if (need_pos) reads.push_back(res.position);
   if (p.cast_shadows) reads.push_back(res.shadow);
-  const int out = graph.resource("toon");
+  const auto out = graph.resource<cv::Mat>("toon");
   graph.add_pass("toon", reads, {out},
                  [res, lights, view, p, use_ka, need_pos, out](PassContext& ctx) {
                    ToonImages in;

@@ -141,12 +141,13 @@ cv::Mat toon_shade(const ToonImages& in, const Lighting& lights, const glm::mat4
 // when p.ka_weight > 0; position only when toon_needs_position(); shadow (a resource holding
 // a ToonShadowMap) only when p.cast_shadows, and then it must be given.
 struct ToonResources {
-  int normal = -1, albedo = -1, ka = -1, position = -1, shadow = -1;
+  ImageHandle normal{}, albedo{}, ka{}, position{};
+  Handle<ToonShadowMap> shadow{};
 };
 
 // Adds the pass "toon" writing the resource "toon" (returned). Validates `p` and `lights`
 // now (InputError), so bad parameters fail before anything renders.
-int add_toon_pass(RenderGraph& graph, const ToonResources& res, const Lighting& lights,
-                  const glm::mat4& view, const ToonParams& p);
+ImageHandle add_toon_pass(RenderGraph& graph, const ToonResources& res, const Lighting& lights,
+                          const glm::mat4& view, const ToonParams& p);
 
 }  // namespace sylva

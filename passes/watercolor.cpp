@@ -52,7 +52,7 @@ bool check_inputs(const WatercolorImages& in, const WatercolorParams& p) {
   const cv::Size size = in.id.size();
   expect_image(in.color, CV_8UC4, size, "color");
   expect_image(in.depth, CV_32FC1, size, "depth");
-  const bool use_albedo = p.pigment == "albedo";
+  const bool use_albedo = p.pigment == Pigment::Albedo;
   if (use_albedo) {
     if (in.albedo.empty())
       throw InputError("watercolor.pigment",
@@ -458,34 +458,35 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
       "\"generated\" or the path of a grey-scale paper image",
       "paper texture: generated from the seed, or an image tiled at 1 px per px at 1024 px");
   set.add_color("watercolor.paper_color", p.paper_color, "colour of the bare paper");
-  set.add_choice("watercolor.pigment", p.pigment, {"shaded", "albedo"},
+  set.add_choice("watercolor.pigment", p.pigment,
+                 {{"shaded", Pigment::Shaded}, {"albedo", Pigment::Albedo}},
                  "pigment colour of a wash: the cluster's mean shaded or albedo colour");
   set.add_int("watercolor.seed", p.seed, 0, 2147483647, "",
               "seed of the generated paper and the turbulence noise");
 }
 
-int add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
-                        const glm::mat4& view_to_world, const WatercolorParams& p) {
-  SYLVA_CHECK(res.color >= 0 && res.id >= 0 && res.depth >= 0,
+ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
+                                const glm::mat4& view_to_world, const WatercolorParams& p) {
+  SYLVA_CHECK(res.color.valid() && res.id.valid() && res.depth.valid(),
               "add_watercolor_pass: color, id and depth are required");
-  const bool albedo = p.pigment == "albedo";
+  const bool albedo = p.pigment == Pigment::Albedo;
   const bool turbulence = p.turbulence_strength > 0.0f;
-  SYLVA_CHECK(!turbulence || res.position >= 0,
+  SYLVA_CHECK(!turbulence || res.position.valid(),
               "add_watercolor_pass: turbulence needs the position buffer");
-  std::vector<int> reads{res.color, res.id, res.depth};
-  if (albedo && res.albedo >= 0) reads.push_back(res.albedo);
+  std::vector<ResourceRef> reads{res.color, res.id, res.depth};
+  if (albedo && res.albedo.valid()) reads.push_back(res.albedo);
   if (turbulence) reads.push_back(res.position);
-  if (res.samples >= 0) reads.push_back(res.samples);
-  const int out = graph.resource("watercolor");
+  if (res.samples.valid()) reads.push_back(res.samples);
+  const auto out = graph.resource<cv::Mat>("watercolor");
   graph.add_pass("watercolor", reads, {out},
                  [res, view_to_world, p, albedo, turbulence, out](PassContext& ctx) {
                    WatercolorImages in;
                    in.color = ctx.read<cv::Mat>(res.color);
                    in.id = ctx.read<cv::Mat>(res.id);
                    in.depth = ctx.read<cv::Mat>(res.depth);
-                   if (albedo && res.albedo >= 0) in.albedo = ctx.read<cv::Mat>(res.albedo);
+                   if (albedo && res.albedo.valid()) in.albedo = ctx.read<cv::Mat>(res.albedo);
                    if (turbulence) in.position = ctx.read<cv::Mat>(res.position);
-                   if (res.samples >= 0) {
+                   if (res.samples.valid()) {
                      in.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(res.samples);
                      in.camera = res.camera;
                      in.wood_cluster = res.wood_cluster;

@@ -48,6 +48,9 @@
 
 namespace sylva {
 
+// watercolor.pigment (WatercolorParams::pigment).
+enum class Pigment { Shaded, Albedo };
+
 struct WatercolorParams {
   // Gaussian sigma applied to each cluster mask before thresholding; shapes become rounder
   // and small gaps between leaves close. px at 1024 px; default 5; [0, 64].
@@ -84,8 +87,8 @@ struct WatercolorParams {
   // raised grain). A missing or unreadable file is an InputError.
   std::string paper = "generated";
   glm::vec3 paper_color{0.913f, 0.871f, 0.784f};  // linear RGB of "#f5f0e5"
-  // "shaded" (mean of the color buffer) or "albedo" (mean of the albedo buffer).
-  std::string pigment = "shaded";
+  // watercolor.pigment: shaded (mean of the color buffer) or albedo (mean of the albedo buffer).
+  Pigment pigment = Pigment::Shaded;
   // Seed of the generated paper and of the turbulence noise. [0, 2^31 - 1]; default 1.
   int seed = 1;
   // Not a parameter: the reference for a relative turbulence_size, in scene units (the style
@@ -138,8 +141,8 @@ cv::Mat watercolor_turbulence(const cv::Mat& position, const cv::Mat& depth,
 void bind_watercolor_params(ParamSet& set, WatercolorParams& p);
 
 struct WatercolorResources {
-  int color = -1, albedo = -1, id = -1, depth = -1, position = -1;
-  int samples = -1;           // "surface-samples", or -1
+  ImageHandle color{}, albedo{}, id{}, depth{}, position{};
+  SamplesHandle samples{};    // "surface-samples", or none
   Camera camera;              // the frame's, with samples
   uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
 };
@@ -147,7 +150,7 @@ struct WatercolorResources {
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only
 // for pigment = "albedo" (InputError at run time if it is -1 then), position only when
 // turbulence_strength > 0. The parameters are copied.
-int add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
-                        const glm::mat4& view_to_world, const WatercolorParams& p);
+ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
+                                const glm::mat4& view_to_world, const WatercolorParams& p);
 
 }  // namespace sylva

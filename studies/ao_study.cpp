@@ -167,9 +167,10 @@ cv::Mat run_frame(const Scene& scene, Rasterizer& rasterizer, const AoStudyOptio
   setup.request = o.request;
   setup.request.ao = ao;
   const GBufferHandles gb = add_raster_pass(graph, setup);
-  const int ao_buffer = rays > 0 ? add_raytraced_ao_pass(graph, &scene, gb.position, gb.normal,
-                                                         o.camera.view, rays, o.seed)
-                                 : gb.ao;
+  const ImageHandle ao_buffer = rays > 0
+                                    ? add_raytraced_ao_pass(graph, &scene, gb.position, gb.normal,
+                                                            o.camera.view, rays, o.seed)
+                                    : gb.ao;
   graph.present(gb.color);
   if (want_ao) graph.present(ao_buffer);
   graph.compile();

@@ -13,13 +13,13 @@ std::vector<BlobOutline> rasterised_blob_outlines(Rasterizer& rasterizer, const 
   request.only_cluster = 0;
   const ShrinkWrapParams sw = blob_shrink_wrap(p);
   cv::Mat depth;
-  if (visible_ids.empty() || p.outlines == "visible") {
+  if (visible_ids.empty() || p.outlines == BlobOutlineSource::Visible) {
     GBuffer g = rasterizer.render(camera, lighting, request);
     visible_ids = g.id;
     depth = g.depth;
   }
   const float gap = blob_gap_radius(p, visible_ids.size());
-  if (p.outlines == "visible")
+  if (p.outlines == BlobOutlineSource::Visible)
     return find_blob_outlines(visible_ids, depth, branch_cluster, sw, gap);
   std::set<uint32_t> clusters;
   for (int y = 0; y < visible_ids.rows; ++y) {

@@ -161,14 +161,15 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
   auto scope = [&](const std::string& name) {
     return scoped ? std::make_unique<GraphScope>(graph, name) : nullptr;
   };
-  std::map<std::string, int> foliage;             // foliage key -> vertex-shading
-  std::map<std::string, int> ao;                  // ao key -> ao-shading
+  std::map<std::string, ShadingHandle> foliage;   // foliage key -> vertex-shading
+  std::map<std::string, AoShadingHandle> ao;      // ao key -> ao-shading
   std::map<std::string, GBufferHandles> rasters;  // raster key -> its targets
   std::map<std::string, RasterRequest> requests;  // raster key -> its request
   SheetPlan plan;
   // Read by the line styles only (compile() culls it otherwise).
-  const int samples =
-      scene.scene ? add_surface_samples_pass(graph, scene.scene, scene.samples_memo) : -1;
+  const SamplesHandle samples =
+      scene.scene ? add_surface_samples_pass(graph, scene.scene, scene.samples_memo)
+                  : SamplesHandle{};
   for (size_t i = 0; i < styles.size(); ++i) {
     const Style& style = *styles[i];
     RasterSetup setup = scene.raster;
@@ -234,9 +235,12 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     auto s = scope("cell-" + std::to_string(i));
     const StyleOutput out = style.build(graph, rasters[rkey], context);
     // Vector output needs the strokes only: the raster ink and its composite are culled.
-    graph.present(present_strokes && out.strokes >= 0 ? out.strokes : out.image);
+    if (present_strokes && out.strokes.valid())
+      graph.present(out.strokes);
+    else
+      graph.present(out.image);
     plan.outputs.push_back(out.image);
-    plan.strokes.push_back(present_strokes ? out.strokes : -1);
+    plan.strokes.push_back(present_strokes ? out.strokes : Handle<StrokeDrawing>{});
     plan.gbuffers.push_back(rasters[rkey]);
   }
   plan.raster_passes = static_cast<int>(rasters.size());

@@ -80,10 +80,10 @@ SheetScene make_sheet_scene(const Scene& scene, const RasterSetup& raster, const
                             uint64_t seed);
 
 struct SheetPlan {
-  std::vector<int> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented
+  std::vector<ImageHandle> outputs;  // per style: its final image (CV_8UC4 BGRA sRGB), presented
   // per style: its StrokeDrawing (StyleOutput::strokes), presented with `present_strokes`,
-  // else -1
-  std::vector<int> strokes;
+  // else none
+  std::vector<Handle<StrokeDrawing>> strokes;
   std::vector<GBufferHandles> gbuffers;  // per style: the raster pass it reads
   int raster_passes = 0;                 // distinct raster configurations
   int foliage_passes = 0;                // Luft preprocessings that run (distinct settings read)

@@ -18,11 +18,12 @@ namespace {
 // The key light's shadow map: the scene's depth seen from the light (toon_key_light), as a
 // resource holding a ToonShadowMap. A headlight (no lights) casts no visible shadow, so it
 // gets an empty map.
-int add_key_shadow_pass(RenderGraph& graph, const StyleContext& context, int size) {
+Handle<ToonShadowMap> add_key_shadow_pass(RenderGraph& graph, const StyleContext& context,
+                                          int size) {
   SYLVA_CHECK(context.rasterizer != nullptr && !context.scene_sphere.empty(),
               "toon.cast_shadows: the style context has no scene to render the shadow map from");
   GraphScope scope(graph, "key-shadow");
-  const int out = graph.resource("shadow-map");
+  const auto out = graph.resource<ToonShadowMap>("shadow-map");
   const int key = toon_key_light(context.lighting);
   if (key < 0) {
     graph.add_pass("shadow-map", {}, {out},
@@ -80,7 +81,8 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
   r.id = gbuffer.id;
   r.samples = context.surface_samples;
   r.camera = context.camera;
-  int strokes = add_ink_lines_pass(graph, r, params.edges, params.lines, context.branch_cluster);
+  Handle<StrokeDrawing> strokes =
+      add_ink_lines_pass(graph, r, params.edges, params.lines, context.branch_cluster);
   if (params.pen.enabled()) {
     validate_pen_params(params.pen);
     ToneResources t;
@@ -93,10 +95,11 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
     view.proj = context.camera.proj;
     view.ortho = context.camera.ortho;
     view.units_per_px = units_per_px(context.camera, context.scene_sphere);
-    const int tone = add_tone_pass(graph, t, view, params.pen, params.lines.detail);
+    const Handle<StrokeDrawing> tone =
+        add_tone_pass(graph, t, view, params.pen, params.lines.detail);
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
   }
-  const int lines = add_stroke_raster_pass(graph, strokes);
+  const ImageHandle lines = add_stroke_raster_pass(graph, strokes);
   InkParams ink = params.ink;
   ink.line_color = params.edges.color;
   // The colour target is drawn on a transparent clear for ink (Style::configure), so its
@@ -124,15 +127,15 @@ StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
                         const StyleParams& params, const StyleContext& context) {
   const BlobParams& p = params.blobs;
   validate_blob_params(p);
-  int outlines = -1;
+  Handle<BlobSet> outlines;
   if (context.blobs) {
-    outlines = graph.resource("blob-outlines");
+    outlines = graph.resource<BlobSet>("blob-outlines");
     graph.add_pass(
         "blob-keyframes", {}, {outlines},
         [outlines, set = context.blobs](PassContext& ctx) { ctx.write(outlines, *set); });
-  } else if (p.outlines == "alone") {
+  } else if (p.outlines == BlobOutlineSource::Alone) {
     SYLVA_CHECK(context.rasterizer != nullptr, "blobs.outlines = alone: no rasteriser");
-    outlines = graph.resource("blob-outlines");
+    outlines = graph.resource<BlobSet>("blob-outlines");
     graph.add_pass("blob-outlines", {gbuffer.id}, {outlines},
                    [outlines, id = gbuffer.id, p, context](PassContext& ctx) {
                      ctx.write(outlines, still_blob_set(rasterised_blob_outlines(
@@ -142,7 +145,8 @@ StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
                    });
   } else {
     // "scene" without surface samples (a graph built without a scene) outlines what is seen.
-    const int samples = p.outlines == "scene" ? context.surface_samples : -1;
+    const SamplesHandle samples =
+        p.outlines == BlobOutlineSource::Scene ? context.surface_samples : SamplesHandle{};
     outlines = add_blob_outlines_pass(graph, gbuffer.id, gbuffer.depth, context.branch_cluster, p,
                                       samples, context.camera);
   }

@@ -41,15 +41,15 @@ struct StyleContext {
   // (npr/blob_keyframes.h); null = shrink-wrap this frame's own clusters.
   std::shared_ptr<const BlobSet> blobs;
   // The scene-level "surface-samples" node (npr/surface_samples.h) the ink lines' crown
-  // coverage is projected from; -1 = none (the outline follows the raster's coverage).
-  int surface_samples = -1;
+  // coverage is projected from; none = the outline follows the raster's coverage.
+  SamplesHandle surface_samples{};
 };
 
 // What a style adds to the graph: its final image (CV_8UC4 BGRA sRGB) and, for styles made of
-// lines, the StrokeDrawing (core/strokes.h) the image's lines are drawn from (-1 = none).
+// lines, the StrokeDrawing (core/strokes.h) the image's lines are drawn from (none = no lines).
 struct StyleOutput {
-  int image = -1;
-  int strokes = -1;
+  ImageHandle image{};
+  Handle<StrokeDrawing> strokes{};
 };
 
 // What the code around a builder needs to know of it, declared in the table instead of tested

@@ -37,7 +37,7 @@ TurntableRenderer::TurntableRenderer(const SheetScene& scene, const Style& style
       path.frames, keyframe_every,
       [setup = scene.raster, centre = scene.scene_sphere.centre, path, bp,
        branch = scene.branch_cluster, world = scene.scene, memo = scene.samples_memo](int f) {
-        if (bp.outlines == "scene" && world != nullptr)
+        if (bp.outlines == BlobOutlineSource::Scene && world != nullptr)
           return scene_blob_outlines(*coverage_samples(*world, memo.get()),
                                      turntable_camera(setup.camera, centre, path, f), branch, bp);
         return turntable_blob_outlines(setup, centre, path, f, bp, branch);
@@ -75,24 +75,25 @@ TurntableFrame TurntableRenderer::render(int frame, bool coherence, bool strokes
     graph.present(plan.gbuffers[0].depth);  // the plant's mask
     graph.present(plan.gbuffers[0].position);
   }
-  const int outlines = m_blobs && coherence ? graph.find_resource("blob-outlines") : -1;
-  if (outlines >= 0) graph.present(outlines);
-  const int lines = coherence && m_style.has_strokes() ? graph.find_resource("lines") : -1;
-  if (lines >= 0) graph.present(lines);
+  const auto outlines =
+      m_blobs && coherence ? graph.find_resource<BlobSet>("blob-outlines") : Handle<BlobSet>{};
+  if (outlines.valid()) graph.present(outlines);
+  const auto lines =
+      coherence && m_style.has_strokes() ? graph.find_resource<cv::Mat>("lines") : ImageHandle{};
+  if (lines.valid()) graph.present(lines);
   graph.compile();
   graph.execute();
   TurntableFrame out;
   if (image) out.image = graph.get<cv::Mat>(plan.outputs[0]);  // shares the pixels
-  if (strokes)
-    out.strokes = std::make_shared<const StrokeDrawing>(graph.get<StrokeDrawing>(plan.strokes[0]));
+  if (strokes) out.strokes = std::make_shared<const StrokeDrawing>(graph.get(plan.strokes[0]));
   if (coherence) {
     out.mask = graph.get<cv::Mat>(plan.gbuffers[0].depth) > 0.0f;
     out.view.image = out.image;
     out.view.position = graph.get<cv::Mat>(plan.gbuffers[0].position);
     out.view.camera = m_scene.raster.camera;
-    if (lines >= 0) out.view.lines = graph.get<cv::Mat>(lines) >= 0.5f;
+    if (lines.valid()) out.view.lines = graph.get(lines) >= 0.5f;
   }
-  if (outlines >= 0) out.blobs = graph.get<BlobSet>(outlines);
+  if (outlines.valid()) out.blobs = graph.get(outlines);
   return out;
 }
 

@@ -4,7 +4,7 @@
 
 namespace sylva {
 
-int GBufferHandles::of(Target t) const {
+ImageHandle GBufferHandles::of(Target t) const {
   switch (t) {
     case Target::Color:
       return color;
@@ -23,7 +23,7 @@ int GBufferHandles::of(Target t) const {
     case Target::Ao:
       return ao;
   }
-  return -1;
+  return {};
 }
 
 namespace {
@@ -53,27 +53,26 @@ cv::Mat& slot(GBuffer& b, Target t) {
 GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
   SYLVA_CHECK(setup.rasterizer != nullptr, "raster pass needs a rasterizer");
   GBufferHandles h;
-  h.color = graph.resource("color");
-  h.normal = graph.resource("normal");
-  h.depth = graph.resource("depth");
-  h.position = graph.resource("position");
-  h.id = graph.resource("id");
-  h.ka = graph.resource("ka");
-  h.albedo = graph.resource("albedo");
-  h.ao = graph.resource("ao");
-  std::vector<int> reads;
-  if (setup.shading >= 0) reads.push_back(setup.shading);
-  if (setup.ao >= 0) reads.push_back(setup.ao);
+  h.color = graph.resource<cv::Mat>("color");
+  h.normal = graph.resource<cv::Mat>("normal");
+  h.depth = graph.resource<cv::Mat>("depth");
+  h.position = graph.resource<cv::Mat>("position");
+  h.id = graph.resource<cv::Mat>("id");
+  h.ka = graph.resource<cv::Mat>("ka");
+  h.albedo = graph.resource<cv::Mat>("albedo");
+  h.ao = graph.resource<cv::Mat>("ao");
+  std::vector<ResourceRef> reads;
+  if (setup.shading.valid()) reads.push_back(setup.shading);
+  if (setup.ao.valid()) reads.push_back(setup.ao);
   graph.add_pass(
       "raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka, h.albedo, h.ao},
       [h, setup](PassContext& ctx) {
-        if (setup.shading >= 0)
-          setup.rasterizer->set_vertex_shading(
-              *ctx.read<std::shared_ptr<const VertexShading>>(setup.shading));
+        if (setup.shading.valid())
+          setup.rasterizer->set_vertex_shading(*ctx.read(setup.shading));
         else if (setup.own_shading)
           setup.rasterizer->restore_vertex_shading();
         RasterRequest request = setup.request;
-        if (setup.ao >= 0) request.ao = *ctx.read<std::shared_ptr<const AoShading>>(setup.ao);
+        if (setup.ao.valid()) request.ao = *ctx.read(setup.ao);
         request.targets = 0;
         for (Target t : kAllTargets)
           if (ctx.wanted(h.of(t))) request.targets |= static_cast<TargetMask>(t);

@@ -10,9 +10,12 @@
 
 namespace sylva {
 
+using ShadingHandle = Handle<std::shared_ptr<const VertexShading>>;
+using AoShadingHandle = Handle<std::shared_ptr<const AoShading>>;
+
 struct GBufferHandles {
-  int color = -1, normal = -1, depth = -1, position = -1, id = -1, ka = -1, albedo = -1, ao = -1;
-  int of(Target t) const;
+  ImageHandle color{}, normal{}, depth{}, position{}, id{}, ka{}, albedo{}, ao{};
+  ImageHandle of(Target t) const;
 };
 
 struct RasterSetup {
@@ -21,14 +24,14 @@ struct RasterSetup {
   Lighting lighting;
   RasterRequest request;  // request.targets is ignored: the graph decides
   // A resource holding std::shared_ptr<const VertexShading> (the Luft preprocessing) the
-  // pass reads and applies before drawing; -1 = draw the uploaded normals.
-  int shading = -1;
-  // With shading = -1: put the scene's own normals and ka back first, which an earlier raster
+  // pass reads and applies before drawing; none = draw the uploaded normals.
+  ShadingHandle shading{};
+  // Without shading: put the scene's own normals and ka back first, which an earlier raster
   // pass on the same rasterizer may have replaced (the cells of a contact sheet).
   bool own_shading = false;
   // A resource holding std::shared_ptr<const AoShading> (the fitted AO shells, e.g.
-  // npr/ao_pass.h) that replaces request.ao when the pass runs; -1 = request.ao as given.
-  int ao = -1;
+  // npr/ao_pass.h) that replaces request.ao when the pass runs; none = request.ao as given.
+  AoShadingHandle ao{};
 };
 
 GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup);

@@ -5,7 +5,7 @@
 
 namespace sylva {
 
-bool PassContext::wanted(int resource) const {
+bool PassContext::wanted(ResourceRef resource) const {
   return m_graph.is_live(resource);
 }
 
@@ -13,17 +13,17 @@ const std::any& PassContext::value(int resource) const {
   const auto& reads = m_graph.m_passes[m_pass].reads;
   SYLVA_CHECK(std::find(reads.begin(), reads.end(), resource) != reads.end(),
               "pass '" + m_graph.m_passes[m_pass].name + "' reads undeclared '" +
-                  m_graph.resource_name(resource) + "'");
+                  m_graph.m_resources.at(resource).name + "'");
   const std::any& v = m_graph.m_resources[resource].value;
-  SYLVA_CHECK(v.has_value(), "render graph: '" + m_graph.resource_name(resource) + "' is empty");
+  SYLVA_CHECK(v.has_value(), "render graph: '" + m_graph.m_resources[resource].name + "' is empty");
   return v;
 }
 
-void PassContext::write(int resource, std::any value) {
+void PassContext::store(int resource, std::any value) {
   SYLVA_CHECK(m_graph.m_resources.at(resource).writer == m_pass,
               "pass '" + m_graph.m_passes[m_pass].name + "' writes undeclared '" +
-                  m_graph.resource_name(resource) + "'");
-  if (m_graph.is_live(resource)) m_graph.m_resources[resource].value = std::move(value);
+                  m_graph.m_resources[resource].name + "'");
+  if (m_graph.m_resources[resource].live) m_graph.m_resources[resource].value = std::move(value);
 }
 
 GraphScope::GraphScope(RenderGraph& graph, const std::string& name)
@@ -37,40 +37,65 @@ GraphScope::~GraphScope() {
   m_graph.m_scope = m_previous;
 }
 
-int RenderGraph::resource(const std::string& local_name) {
+int RenderGraph::declare(const std::string& local_name, std::type_index type) {
   const std::string name = m_scope + local_name;
-  int found = find_resource(name);
-  if (found >= 0) return found;
+  const int found = find_id(name);
+  if (found >= 0) {
+    SYLVA_CHECK(m_resources[found].type == type, "render graph: '" + name + "' declared as " +
+                                                     m_resources[found].type.name() + ", now as " +
+                                                     type.name());
+    return found;
+  }
   Resource r;
   r.name = name;
+  r.type = type;
   m_resources.push_back(std::move(r));
   m_compiled = false;
   return static_cast<int>(m_resources.size()) - 1;
 }
 
-int RenderGraph::find_resource(const std::string& name) const {
+int RenderGraph::find_id(const std::string& name) const {
   for (size_t i = 0; i < m_resources.size(); ++i)
     if (m_resources[i].name == name) return static_cast<int>(i);
   return -1;
 }
 
-const std::string& RenderGraph::resource_name(int resource) const {
-  return m_resources.at(resource).name;
+int RenderGraph::checked(ResourceRef resource) const {
+  SYLVA_CHECK(resource.id >= 0 && size_t(resource.id) < m_resources.size(),
+              "render graph: a handle that names no resource");
+  const Resource& r = m_resources[resource.id];
+  SYLVA_CHECK(r.type == resource.type, "render graph: '" + r.name + "' holds " + r.type.name() +
+                                           ", not " + resource.type.name());
+  return resource.id;
 }
 
-int RenderGraph::add_pass(const std::string& local_name, std::vector<int> reads,
-                          std::vector<int> writes, Run run) {
+const std::string& RenderGraph::resource_name(ResourceRef resource) const {
+  return m_resources[checked(resource)].name;
+}
+
+// The handles' ids, each checked against its resource's type.
+std::vector<int> RenderGraph::ids(const std::vector<ResourceRef>& refs) const {
+  std::vector<int> out;
+  out.reserve(refs.size());
+  for (const ResourceRef& r : refs)
+    out.push_back(checked(r));
+  return out;
+}
+
+int RenderGraph::add_pass(const std::string& local_name, std::vector<ResourceRef> read_refs,
+                          std::vector<ResourceRef> write_refs, Run run) {
   const std::string name = m_scope + local_name;
   SYLVA_CHECK(!has_pass(name), "render graph: duplicate pass '" + name + "'");
+  std::vector<int> reads = ids(read_refs), writes = ids(write_refs);
   int id = static_cast<int>(m_passes.size());
   for (int r : reads) {
-    SYLVA_CHECK(m_resources.at(r).writer >= 0,
-                "pass '" + name + "' reads '" + resource_name(r) + "' before anything writes it");
+    SYLVA_CHECK(m_resources.at(r).writer >= 0, "pass '" + name + "' reads '" + m_resources[r].name +
+                                                   "' before anything writes it");
     m_resources[r].readers.push_back(id);
   }
   for (int w : writes) {
     SYLVA_CHECK(m_resources.at(w).writer < 0,
-                "resource '" + resource_name(w) + "' written by two passes");
+                "resource '" + m_resources[w].name + "' written by two passes");
     m_resources[w].writer = id;
   }
   m_passes.push_back(Pass{name, std::move(reads), std::move(writes), std::move(run)});
@@ -78,9 +103,10 @@ int RenderGraph::add_pass(const std::string& local_name, std::vector<int> reads,
   return id;
 }
 
-void RenderGraph::present(int resource) {
-  SYLVA_CHECK(m_resources.at(resource).writer >= 0,
-              "presented resource '" + resource_name(resource) + "' has no writer");
+void RenderGraph::present(ResourceRef ref) {
+  const int resource = checked(ref);
+  SYLVA_CHECK(m_resources[resource].writer >= 0,
+              "presented resource '" + m_resources[resource].name + "' has no writer");
   m_resources[resource].presented = true;
   m_compiled = false;
 }
@@ -115,7 +141,7 @@ void RenderGraph::execute(const std::function<void(const std::string&)>& after_p
     pass.run(ctx);
     for (int w : pass.writes) {
       SYLVA_CHECK(!m_resources[w].live || m_resources[w].value.has_value(),
-                  "pass '" + pass.name + "' did not write '" + resource_name(w) + "'");
+                  "pass '" + pass.name + "' did not write '" + m_resources[w].name + "'");
       if (m_observer && m_resources[w].live) m_observer(m_resources[w].name, m_resources[w].value);
     }
     // Release inputs after their last reader, unless they are outputs.
@@ -127,9 +153,9 @@ void RenderGraph::execute(const std::function<void(const std::string&)>& after_p
   }
 }
 
-bool RenderGraph::is_live(int resource) const {
+bool RenderGraph::is_live(ResourceRef resource) const {
   SYLVA_CHECK(m_compiled, "render graph: compile() before asking what is live");
-  return m_resources.at(resource).live;
+  return m_resources[checked(resource)].live;
 }
 
 bool RenderGraph::has_pass(const std::string& name) const {

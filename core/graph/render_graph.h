@@ -3,7 +3,10 @@
 // needs, execute() runs the rest in order and frees each resource after its last reader.
 // A pass asks PassContext::wanted() which of its outputs are live, so a multi-output pass
 // (the raster pass) produces only those. Passes must be added in dependency order (a pass
-// reads only what earlier passes write); resources hold any copyable value (std::any).
+// reads only what earlier passes write). A resource is declared with the type of its value
+// (resource<T>() gives a Handle<T>), and add_pass checks that every handle it is given names a
+// resource of that type, so a pass that reads or writes the wrong type fails where the graph is
+// built, not when it runs; PassContext::read and write take the value's type from the handle.
 // A scope (GraphScope) prefixes the names a builder gives, so one graph can hold several
 // copies of the same passes, e.g. one style chain per cell of a contact sheet.
 #pragma once
@@ -11,30 +14,59 @@
 #include <any>
 #include <functional>
 #include <string>
+#include <type_traits>
+#include <typeindex>
+#include <typeinfo>
 #include <vector>
 
 #include "core/error.h"
+
+namespace cv {
+class Mat;
+}
 
 namespace sylva {
 
 class RenderGraph;
 
+// A resource of a render graph holding a T; a default handle (id -1) names none.
+template <class T>
+struct Handle {
+  int id = -1;
+  bool valid() const { return id >= 0; }
+  bool operator==(const Handle&) const = default;
+};
+
+// An image (cv::Mat) in a render graph: a G-buffer target or an image pass's output.
+using ImageHandle = Handle<cv::Mat>;
+
+// Any handle with its type, as a pass's reads and writes are listed.
+struct ResourceRef {
+  int id;
+  std::type_index type;
+  template <class T>
+  ResourceRef(Handle<T> h) : id(h.id), type(typeid(T)) {}  // NOLINT: implicit on purpose
+};
+
 class PassContext {
  public:
-  bool wanted(int resource) const;
+  bool wanted(ResourceRef resource) const;
   template <class T>
-  const T& read(int resource) const {
-    const std::any& v = value(resource);
-    const T* p = std::any_cast<T>(&v);
-    SYLVA_CHECK(p != nullptr, "render graph: resource has another type");
+  const T& read(Handle<T> resource) const {
+    const T* p = std::any_cast<T>(&value(resource.id));
+    SYLVA_CHECK(p != nullptr, "render graph: a handle of another type");  // add_pass checks it
     return *p;
   }
-  void write(int resource, std::any value);
+  template <class T>
+  void write(Handle<T> resource, std::type_identity_t<T> value) {
+    store(resource.id, std::any(std::move(value)));
+  }
 
  private:
   friend class RenderGraph;
   PassContext(RenderGraph& graph, int pass) : m_graph(graph), m_pass(pass) {}
   const std::any& value(int resource) const;
+  void store(int resource, std::any value);
   RenderGraph& m_graph;
   int m_pass;
 };
@@ -43,11 +75,16 @@ class RenderGraph {
  public:
   using Run = std::function<void(PassContext&)>;
 
-  // Declares a resource, or returns the existing one with this name (scope prefix included).
-  int resource(const std::string& name);
-  // The pass is named scope() + name.
-  int add_pass(const std::string& name, std::vector<int> reads, std::vector<int> writes, Run run);
-  void present(int resource);
+  // Declares a resource holding a T, or returns the existing one with this name (scope prefix
+  // included); the same name declared with another type is a programming error.
+  template <class T>
+  Handle<T> resource(const std::string& name) {
+    return Handle<T>{declare(name, typeid(T))};
+  }
+  // The pass is named scope() + name. Every handle must be valid and of its resource's type.
+  int add_pass(const std::string& name, std::vector<ResourceRef> reads,
+               std::vector<ResourceRef> writes, Run run);
+  void present(ResourceRef resource);
 
   void compile();
   // after_pass (optional) is called with each live pass's full name once it has run, e.g.
@@ -58,16 +95,21 @@ class RenderGraph {
   // "" or "a/" or "a/b/": what resource() and add_pass() put in front of names. The lookups
   // below (find_resource, has_pass, pass_live, resource_name) use full names.
   const std::string& scope() const { return m_scope; }
-  bool is_live(int resource) const;
+  bool is_live(ResourceRef resource) const;
   bool pass_live(const std::string& name) const;
   bool has_pass(const std::string& name) const;
-  int find_resource(const std::string& name) const;  // -1 if absent
-  const std::string& resource_name(int resource) const;
+  // The resource with this full name if it holds a T, else an invalid handle.
+  template <class T>
+  Handle<T> find_resource(const std::string& name) const {
+    const int id = find_id(name);
+    return Handle<T>{id >= 0 && m_resources[id].type == typeid(T) ? id : -1};
+  }
+  const std::string& resource_name(ResourceRef resource) const;
   std::vector<std::string> live_passes() const;
 
   template <class T>
-  const T& get(int resource) const {
-    const T* p = std::any_cast<T>(&m_resources.at(resource).value);
+  const T& get(Handle<T> resource) const {
+    const T* p = std::any_cast<T>(&m_resources.at(checked(resource)).value);
     SYLVA_CHECK(p != nullptr, "render graph: '" + resource_name(resource) + "' not produced");
     return *p;
   }
@@ -82,8 +124,13 @@ class RenderGraph {
 
  private:
   friend class PassContext;
+  int declare(const std::string& local_name, std::type_index type);
+  int find_id(const std::string& name) const;  // -1 if absent
+  int checked(ResourceRef resource) const;     // its id, once it names a resource of its type
+  std::vector<int> ids(const std::vector<ResourceRef>& refs) const;
   struct Resource {
     std::string name;
+    std::type_index type = typeid(void);
     int writer = -1;
     std::vector<int> readers;
     bool presented = false;

@@ -115,7 +115,7 @@ TEST(SurfaceSamples, TheNodeMakesThemOncePerMemo) {
   std::shared_ptr<const SurfaceSamples> first;
   for (int run = 0; run < 2; ++run) {
     RenderGraph g;
-    const int out = add_surface_samples_pass(g, &scene, memo);
+    const SamplesHandle out = add_surface_samples_pass(g, &scene, memo);
     g.present(out);
     g.compile();
     g.execute();

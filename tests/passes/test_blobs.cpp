@@ -265,7 +265,7 @@ TEST(Blobs, ExtremesAndBadValues) {
     p.step = hi ? 1.0f : 0.001f;
     p.peaks = hi ? 16 : 1;
     p.peak_height = hi ? 2.0f : 0.0f;
-    p.blend_light = hi ? "point" : "directional";
+    p.blend_light = hi ? BlendLight::Point : BlendLight::Directional;
     p.blend_right = p.blend_up = hi ? 10.0f : -10.0f;
     p.blend_ambient = hi ? 1.0f : 0.0f;
     p.blend_diffuse = hi ? 2.0f : 0.0f;
@@ -295,14 +295,16 @@ TEST(Blobs, ExtremesAndBadValues) {
   EXPECT_EQ(where([](BlobParams& p) { p.translucency = -0.01f; }), "blobs.translucency");
   EXPECT_EQ(where([](BlobParams& p) { p.edge_width = 32.5f; }), "blobs.edge_width");
   EXPECT_EQ(where([](BlobParams& p) { p.blend_right = 10.5f; }), "blobs.blend_right");
-  EXPECT_EQ(where([](BlobParams& p) { p.blend_light = "spot"; }), "blobs.blend_light");
+  EXPECT_EQ(where([](BlobParams& p) { p.blend_light = static_cast<BlendLight>(7); }),
+            "blobs.blend_light");
   EXPECT_EQ(where([](BlobParams& p) { p.variation = 0.6f; }), "blobs.variation");
 }
 
 TEST(Blobs, GraphNodesReadOnlyWhatTheyNeed) {
   RenderGraph g;
-  const int color = g.resource("color"), albedo = g.resource("albedo"), id = g.resource("id"),
-            depth = g.resource("depth"), position = g.resource("position");
+  const ImageHandle color = g.resource<cv::Mat>("color"), albedo = g.resource<cv::Mat>("albedo"),
+                    id = g.resource<cv::Mat>("id"), depth = g.resource<cv::Mat>("depth"),
+                    position = g.resource<cv::Mat>("position");
   Buffers b = empty_buffers(32);
   add_disc(b, {16, 16}, 8, 1, cv::Scalar(40, 160, 60), 1.0f);
   g.add_pass("raster", {}, {color, albedo, id, depth, position}, [&](PassContext& ctx) {
@@ -313,13 +315,13 @@ TEST(Blobs, GraphNodesReadOnlyWhatTheyNeed) {
     ctx.write(position, cv::Mat());
   });
   const BlobParams p = wash_only();
-  const int outlines = add_blob_outlines_pass(g, id, depth, 0, p);
+  const auto outlines = add_blob_outlines_pass(g, id, depth, 0, p);
   BlobResources r;
   r.color = color;
   r.albedo = albedo;
   r.id = id;
   r.position = position;
-  const int out = add_blobs_pass(g, outlines, r, flat_frame(), p);
+  const auto out = add_blobs_pass(g, outlines, r, flat_frame(), p);
   g.present(out);
   g.compile();
   g.execute();

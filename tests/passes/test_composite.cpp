@@ -159,12 +159,12 @@ TEST(Paper, GrainLooksTheSameAtEveryResolution) {
 TEST(InkComposite, GraphProducesTheFinalImage) {
   const Inputs in = inputs();
   RenderGraph g;
-  const int lines = g.resource("edges"), color = g.resource("color");
+  const ImageHandle lines = g.resource<cv::Mat>("edges"), color = g.resource<cv::Mat>("color");
   g.add_pass("write-edges", {}, {lines}, [&](PassContext& c) { c.write(lines, in.lines); });
   g.add_pass("write-color", {}, {color}, [&](PassContext& c) { c.write(color, in.color); });
   InkParams p;
   p.paper.grain = 0.3f;
-  const int out = add_ink_composite_pass(g, lines, color, p);
+  const auto out = add_ink_composite_pass(g, lines, color, p);
   EXPECT_EQ(g.resource_name(out), "ink");
   g.present(out);
   g.execute();

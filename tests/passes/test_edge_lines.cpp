@@ -247,14 +247,14 @@ struct GraphFixture {
   std::string ran;
   EdgeImages images = render(CubeScene{.sphere = true}, 96);
   GraphFixture() {
-    r.normal = g.resource("normal");
-    r.depth = g.resource("depth");
-    r.id = g.resource("id");
-    r.color = g.resource("color");
-    const std::pair<int, cv::Mat> writers[] = {{r.normal, images.normal},
-                                               {r.depth, images.depth},
-                                               {r.id, images.id},
-                                               {r.color, images.color}};
+    r.normal = g.resource<cv::Mat>("normal");
+    r.depth = g.resource<cv::Mat>("depth");
+    r.id = g.resource<cv::Mat>("id");
+    r.color = g.resource<cv::Mat>("color");
+    const std::pair<ImageHandle, cv::Mat> writers[] = {{r.normal, images.normal},
+                                                       {r.depth, images.depth},
+                                                       {r.id, images.id},
+                                                       {r.color, images.color}};
     for (const auto& [res, image] : writers)
       g.add_pass("write-" + g.resource_name(res), {}, {res},
                  [this, res = res, image = image](PassContext& c) {
@@ -270,8 +270,8 @@ TEST(Edges, GraphReadsOnlyWhatEnabledKindsNeed) {
     EdgeParams p = only(&EdgeParams::normal);
     p.silhouette = true;
     EdgeResources no_color = f.r;
-    no_color.color = -1;
-    const int out = add_edges_pass(f.g, no_color, p);
+    no_color.color = {};
+    const auto out = add_edges_pass(f.g, no_color, p);
     EXPECT_EQ(f.g.resource_name(out), "edges");
     f.g.present(out);
     f.g.compile();

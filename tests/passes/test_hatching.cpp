@@ -52,7 +52,7 @@ ToneView view(int shift = 0) {
 
 PenParams hatching() {
   PenParams p;
-  p.tone = "hatching";
+  p.tone = PenTone::Hatching;
   p.lightest = 0.2f;
   p.angle_jitter = 0.0f;  // one region: hatching at 60 degrees, crossing at 150
   return p;
@@ -91,7 +91,7 @@ TEST(Hatching, AnEvenlyLitPlaneGetsNoTone) {
   // The tone's range comes from the plant's own quantiles: a uniform tone has none.
   EXPECT_TRUE(tone_strokes(plane(0, 128), view(), hatching(), 10.0).strokes.empty());
   PenParams none = hatching();
-  none.tone = "none";
+  none.tone = PenTone::None;
   EXPECT_TRUE(tone_strokes(plane(), view(), none, 10.0).strokes.empty());
 }
 
@@ -174,7 +174,7 @@ TEST(Hatching, SameInputSameBytes) {
 
 TEST(Hatching, StipplesAreDots) {
   PenParams p = hatching();
-  p.tone = "stipple";
+  p.tone = PenTone::Stipple;
   const StrokeDrawing d = tone_strokes(plane(), view(), p, 10.0);
   ASSERT_FALSE(d.strokes.empty());
   for (const Stroke& s : d.strokes)

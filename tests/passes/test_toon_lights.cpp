@@ -140,18 +140,18 @@ TEST(Toon, SlopeScaledBiasPreventsSelfShadowing) {
 // The graph stand-in for the raster pass records which targets it was asked for.
 struct GraphFixture {
   RenderGraph g;
-  int normal, albedo, ka, position, id, depth;
+  ImageHandle normal, albedo, ka, position, id, depth;
   std::string made;
   GraphFixture() {
-    normal = g.resource("normal");
-    albedo = g.resource("albedo");
-    ka = g.resource("ka");
-    position = g.resource("position");
-    id = g.resource("id");
-    depth = g.resource("depth");
+    normal = g.resource<cv::Mat>("normal");
+    albedo = g.resource<cv::Mat>("albedo");
+    ka = g.resource<cv::Mat>("ka");
+    position = g.resource<cv::Mat>("position");
+    id = g.resource<cv::Mat>("id");
+    depth = g.resource<cv::Mat>("depth");
     const ToonImages in = sphere(32);
     g.add_pass("raster", {}, {normal, albedo, ka, position, id, depth}, [this, in](PassContext& c) {
-      auto put = [&](int r, const cv::Mat& m) {
+      auto put = [&](ImageHandle r, const cv::Mat& m) {
         if (!c.wanted(r)) return;
         made += g.resource_name(r) + ",";
         c.write(r, m);
@@ -164,7 +164,7 @@ struct GraphFixture {
       put(depth, cv::Mat(32, 32, CV_32FC1, cv::Scalar(5)));
     });
     // An edge-like pass that does read the ids, which toon must not make live.
-    const int edges = g.resource("edges");
+    const auto edges = g.resource<cv::Mat>("edges");
     g.add_pass("edges", {id, normal}, {edges},
                [edges](PassContext& c) { c.write(edges, cv::Mat()); });
   }
@@ -174,7 +174,7 @@ struct GraphFixture {
 TEST(Toon, GraphNeverRasterisesIds) {
   GraphFixture f;
   ToonParams p;
-  const int out = add_toon_pass(f.g, f.resources(), Lighting::three_point(), glm::mat4(1.0f), p);
+  const auto out = add_toon_pass(f.g, f.resources(), Lighting::three_point(), glm::mat4(1.0f), p);
   EXPECT_EQ(f.g.resource_name(out), "toon");
   f.g.present(out);
   f.g.compile();
@@ -200,7 +200,7 @@ TEST(Toon, GraphSkipsKaAtWeightZeroAndReadsWhatShadowsNeed) {
   }
   {
     GraphFixture f;
-    const int map = f.g.resource("shadow_map");
+    const auto map = f.g.resource<ToonShadowMap>("shadow_map");
     f.g.add_pass("shadow", {f.depth}, {map}, [map, depth = f.depth](PassContext& c) {
       ToonShadowMap m = square_shadow_map();
       m.depth = c.read<cv::Mat>(depth);

@@ -271,7 +271,7 @@ TEST(Watercolor, PaperFieldIsDefinedEverywhereAndLoadedPaperTiles) {
 TEST(Watercolor, AlbedoPigmentNeedsTheAlbedo) {
   Scene s = three_clusters({64, 64});
   WatercolorParams p;
-  p.pigment = "albedo";
+  p.pigment = Pigment::Albedo;
   EXPECT_NO_THROW(watercolor(s.img, kIdentity, p));
   s.img.albedo.release();
   EXPECT_THROW(watercolor(s.img, kIdentity, p), InputError);
@@ -298,12 +298,12 @@ TEST(Watercolor, GraphPassReadsOnlyWhatItUses) {
   for (bool turbulence : {false, true}) {
     RenderGraph g;
     WatercolorResources res;
-    res.color = g.resource("color");
-    res.albedo = g.resource("albedo");
-    res.id = g.resource("id");
-    res.depth = g.resource("depth");
-    res.position = g.resource("position");
-    auto source = [&](const char* name, int r, cv::Mat m) {
+    res.color = g.resource<cv::Mat>("color");
+    res.albedo = g.resource<cv::Mat>("albedo");
+    res.id = g.resource<cv::Mat>("id");
+    res.depth = g.resource<cv::Mat>("depth");
+    res.position = g.resource<cv::Mat>("position");
+    auto source = [&](const char* name, ImageHandle r, cv::Mat m) {
       g.add_pass(std::string("make ") + name, {}, {r},
                  [r, m](PassContext& ctx) { ctx.write(r, m); });
     };
@@ -314,7 +314,7 @@ TEST(Watercolor, GraphPassReadsOnlyWhatItUses) {
     source("position", res.position, s.img.position);
     WatercolorParams p;
     p.turbulence_strength = turbulence ? 0.5f : 0.0f;
-    const int out = add_watercolor_pass(g, res, kIdentity, p);
+    const auto out = add_watercolor_pass(g, res, kIdentity, p);
     EXPECT_EQ(g.resource_name(out), "watercolor");
     g.present(out);
     g.compile();

@@ -70,9 +70,9 @@ void frame(Rig& r, bool raster_only) {
   context.view = setup.camera.view;
   context.background = setup.request.background;
   context.branch_cluster = r.scene.branch_cluster_id();
-  int out = gb.id;
+  ImageHandle out = gb.id;
   if (raster_only) {
-    for (int t : {gb.color, gb.albedo, gb.id, gb.depth})
+    for (ImageHandle t : {gb.color, gb.albedo, gb.id, gb.depth})
       graph.present(t);
   } else {
     out = r.style.build(graph, gb, context).image;

@@ -97,7 +97,7 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   setup.lighting = Lighting::three_point();
   style.configure(setup.request);
   if (style.normals() != NormalMode::Original) {
-    const int shading = graph.resource("vertex-shading");
+    const auto shading = graph.resource<std::shared_ptr<const VertexShading>>("vertex-shading");
     graph.add_pass("cached-shading", {}, {shading},
                    [&r, shading](PassContext& ctx) { ctx.write(shading, r.shading); });
     setup.shading = shading;
@@ -113,7 +113,7 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.scene_sphere = r.scene.framing_sphere();
   context.camera = setup.camera;
   context.branch_cluster = r.scene.branch_cluster_id();
-  const int out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
+  const ImageHandle out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
   graph.present(out);
   graph.execute();
   benchmark::DoNotOptimize(graph.get<cv::Mat>(out).data);
@@ -211,7 +211,10 @@ void render_command(const fs::path& glb, const CardFiles& files, const Style& st
   context_info.scene_sphere = scene.framing_sphere();
   context_info.branch_cluster = scene.branch_cluster_id();
   const StyleOutput out = style.build(graph, gb, context_info);
-  graph.present(svg ? out.strokes : out.image);
+  if (svg)
+    graph.present(out.strokes);
+  else
+    graph.present(out.image);
   graph.execute();
   if (svg)
     write_svg(files.svg.string(), graph.get<StrokeDrawing>(out.strokes), VectorPage{});

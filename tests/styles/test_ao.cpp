@@ -165,7 +165,7 @@ TEST(Ao, RaytracedIsDarkerInsideTheCrownThanAtItsRim) {
   AoRig rig(48);
   RenderGraph graph;
   const GBufferHandles gb = add_raster_pass(graph, rig.rs);
-  const int ao =
+  const auto ao =
       add_raytraced_ao_pass(graph, &rig.scene, gb.position, gb.normal, rig.rs.camera.view, 16, 1);
   graph.present(ao);
   graph.present(gb.depth);
@@ -224,7 +224,7 @@ TEST(Ao, MemoFitsOnceAndBuildsTheTracerOnce) {
     as.settings.model = AoModel::HegemanShells;
     as.settings.shells = shells;
     as.memo = std::move(m);
-    const int out = add_ao_shading_pass(graph, as);
+    const auto out = add_ao_shading_pass(graph, as);
     graph.present(out);
     graph.execute();
     return graph.get<std::shared_ptr<const AoShading>>(out);
@@ -243,8 +243,8 @@ TEST(Ao, MemoFitsOnceAndBuildsTheTracerOnce) {
   auto traced = [&](std::shared_ptr<AoMemo> m) {
     RenderGraph graph;
     const GBufferHandles gb = add_raster_pass(graph, rig.rs);
-    const int ao = add_raytraced_ao_pass(graph, &rig.scene, gb.position, gb.normal,
-                                         rig.rs.camera.view, 4, 1, std::move(m));
+    const auto ao = add_raytraced_ao_pass(graph, &rig.scene, gb.position, gb.normal,
+                                          rig.rs.camera.view, 4, 1, std::move(m));
     graph.present(ao);
     graph.execute();
     return graph.get<cv::Mat>(ao).clone();

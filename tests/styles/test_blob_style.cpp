@@ -66,7 +66,7 @@ TEST(BlobStyle, AloneOutlinesCoverHiddenLeaves) {
   BlobParams p;
   const auto visible =
       rasterised_blob_outlines(*s.raster, s.rs.camera, s.rs.lighting, {}, p, branch);
-  p.outlines = "alone";
+  p.outlines = BlobOutlineSource::Alone;
   const auto alone = rasterised_blob_outlines(*s.raster, s.rs.camera, s.rs.lighting, {}, p, branch);
   ASSERT_EQ(alone.size(), visible.size());
   for (size_t i = 0; i < alone.size(); ++i) {

@@ -223,7 +223,7 @@ class EveryParameter : public ::testing::TestWithParam<Case> {
     const SheetPlan plan = add_sheet_passes(graph, {&style}, scene);
     if (targets) {
       const GBufferHandles& g = plan.gbuffers[0];
-      for (int t : {g.normal, g.albedo, g.ka, g.position, g.depth, g.id, g.color})
+      for (ImageHandle t : {g.normal, g.albedo, g.ka, g.position, g.depth, g.id, g.color})
         graph.present(t);
       graph.compile();
     }

@@ -18,7 +18,7 @@ TEST(Styles, StandardNeverAllocatesTheIdTarget) {
   StyleRig s;
   RenderGraph graph;
   GBufferHandles gb = add_raster_pass(graph, s.rs);
-  int out = Style("standard").build(graph, gb, StyleContext{}).image;
+  ImageHandle out = Style("standard").build(graph, gb, StyleContext{}).image;
   graph.present(out);
   graph.compile();
   EXPECT_FALSE(graph.is_live(gb.id));
@@ -53,13 +53,13 @@ TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
     style.configure(rs.request);
     IlluminationSetup is;
     is.scene = &s.scene;
-    const int shading = add_foliage_illumination_pass(graph, is);
+    const auto shading = add_foliage_illumination_pass(graph, is);
     if (style.normals() != NormalMode::Original) rs.shading = shading;
     const GBufferHandles gb = add_raster_pass(graph, rs);
     StyleContext context;
     context.lighting = s.rs.lighting;
     context.view = s.rs.camera.view;
-    const int out = style.build(graph, gb, context).image;
+    const ImageHandle out = style.build(graph, gb, context).image;
     graph.present(out);
     graph.execute();
     const TargetMask drawn = s.raster->last_allocated_targets();
@@ -91,7 +91,7 @@ TEST(Styles, PreprocessingRunsOnlyForStylesThatReadIt) {
     RenderGraph graph;
     IlluminationSetup is;
     is.scene = &s.scene;
-    const int shading = add_foliage_illumination_pass(graph, is);
+    const auto shading = add_foliage_illumination_pass(graph, is);
     RasterSetup rs = s.rs;
     if (style.normals() != NormalMode::Original) rs.shading = shading;
     const GBufferHandles gb = add_raster_pass(graph, rs);

@@ -13,18 +13,18 @@ namespace {
 // raster -> {color, normal, id}; edges reads normal+id; toon reads color.
 struct Fixture {
   RenderGraph g;
-  int color, normal, id, edges_out, toon_out;
+  Handle<int> color, normal, id, edges_out, toon_out;
   std::string log;
   std::string raster_made;
   Fixture() {
-    color = g.resource("color");
-    normal = g.resource("normal");
-    id = g.resource("id");
-    edges_out = g.resource("edges");
-    toon_out = g.resource("toon");
+    color = g.resource<int>("color");
+    normal = g.resource<int>("normal");
+    id = g.resource<int>("id");
+    edges_out = g.resource<int>("edges");
+    toon_out = g.resource<int>("toon");
     g.add_pass("raster", {}, {color, normal, id}, [this](PassContext& c) {
       log += "raster;";
-      for (int r : {color, normal, id})
+      for (Handle<int> r : {color, normal, id})
         if (c.wanted(r)) {
           raster_made += g.resource_name(r) + ",";
           c.write(r, 1);
@@ -108,15 +108,15 @@ TEST(RenderGraph, DotExportMarksCulledNodes) {
 // apart, both read the shared input, and only the presented copy runs.
 TEST(RenderGraph, ScopesSeparateCopiesOfABuilder) {
   RenderGraph g;
-  const int in = g.resource("in");
+  const auto in = g.resource<int>("in");
   g.add_pass("source", {}, {in}, [in](PassContext& c) { c.write(in, 2); });
   auto builder = [&](int factor) {
-    const int out = g.resource("out");
+    const auto out = g.resource<int>("out");
     g.add_pass("scale", {in}, {out},
                [in, out, factor](PassContext& c) { c.write(out, c.read<int>(in) * factor); });
     return out;
   };
-  int a = -1, b = -1;
+  Handle<int> a, b;
   {
     GraphScope scope(g, "a");
     a = builder(3);
@@ -133,8 +133,9 @@ TEST(RenderGraph, ScopesSeparateCopiesOfABuilder) {
   EXPECT_EQ(g.scope(), "");
   EXPECT_NE(a, b);
   EXPECT_EQ(g.resource_name(a), "a/out");
-  EXPECT_EQ(g.find_resource("b/out"), b);
-  EXPECT_EQ(g.resource("in"), in);  // outside a scope the name is the plain one
+  EXPECT_EQ(g.find_resource<int>("b/out"), b);
+  EXPECT_FALSE(g.find_resource<float>("b/out").valid());  // another type finds nothing
+  EXPECT_EQ(g.resource<int>("in"), in);  // outside a scope the name is the plain one
   g.present(b);
   g.compile();
   EXPECT_FALSE(g.pass_live("a/scale"));
@@ -148,8 +149,29 @@ TEST(RenderGraph, ScopesSeparateCopiesOfABuilder) {
 
 TEST(RenderGraph, ReadingBeforeWritingIsAProgrammingError) {
   RenderGraph g;
-  int a = g.resource("a");
+  const auto a = g.resource<int>("a");
   EXPECT_DEATH_IF_SUPPORTED(g.add_pass("p", {a}, {}, [](PassContext&) {}), "before anything");
+}
+
+// A resource has one type: declaring its name again with another type, or handing add_pass a
+// handle whose type is not the resource's, stops where the graph is built, before any pass
+// runs; a default handle names nothing.
+TEST(RenderGraph, HandlesOfTheWrongTypeAreRefusedWhereThePassIsAdded) {
+  RenderGraph g;
+  const auto a = g.resource<int>("a");
+  g.add_pass("source", {}, {a}, [a](PassContext& c) { c.write(a, 7); });
+  EXPECT_DEATH_IF_SUPPORTED((void)g.resource<float>("a"), "declared as");
+  const Handle<float> forged{a.id};
+  const auto out = g.resource<float>("out");
+  EXPECT_DEATH_IF_SUPPORTED(g.add_pass("p", {forged}, {out}, [](PassContext&) {}), "holds");
+  EXPECT_DEATH_IF_SUPPORTED(g.add_pass("q", {Handle<int>{}}, {out}, [](PassContext&) {}),
+                            "names no resource");
+  EXPECT_DEATH_IF_SUPPORTED(g.present(forged), "holds");
+  g.add_pass("half", {a}, {out},
+             [a, out](PassContext& c) { c.write(out, static_cast<float>(c.read(a)) / 2.0f); });
+  g.present(out);
+  g.execute();
+  EXPECT_FLOAT_EQ(g.get(out), 3.5f);
 }
 
 }  // namespace
