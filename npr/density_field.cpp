@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "npr/density_splat.h"
 
 namespace sylva {
 namespace {
@@ -298,193 +299,15 @@ float DensityField::value_and_gradient(const glm::vec3& q, glm::vec3& gradient) 
   return float(sum - double(m_tau));  // Luft et al. Eq. 3
 }
 
-namespace {
-
-// Nodes a generator may reach along each axis (one node of slack for rounding; the kernel
-// itself decides), empty when lo > hi.
-struct NodeBox {
-  int lo[3] = {1, 1, 1};
-  int hi[3] = {0, 0, 0};
-};
-
-// [ceil(lo), floor(hi)] clamped to [first, last]; empty (a > e) when they do not meet.
-void node_span(double lo, double hi, int first, int last, int& a, int& e) {
-  lo = std::max(double(first), lo);
-  hi = std::min(double(last), hi);
-  if (!(lo <= hi)) {
-    a = 1;
-    e = 0;
-    return;
-  }
-  // Both ends are >= 0 here, where truncation is floor (and SSE2 has no fast ceil).
-  a = int(lo);
-  a += double(a) < lo ? 1 : 0;
-  e = int(hi);
-}
-
-// Adds one generator's kernel (Luft et al. Eq. 2) to `planes` consecutive planes starting at
-// `dst`: s = u[x] + v[y] + w[z] (squared distances over rho^2 per axis), D = (1 - s)^2 where
-// s < 1. (gx, gy) is the generator in node units, `widen` the slack for node drift. Each plane
-// visits the square around the ball's cross-section without branches (max(1 - s, 0) zeroes the
-// corners): cheaper than exact row spans, whose set-up and mispredictions cost more than the nodes
-// they save. Compiled for AVX2 too (no FMA, so every version gives the same bytes).
-__attribute__((target_clones("avx2", "default"))) void splat_planes(
-    double* dst, size_t plane, int nx, int planes, int yl, int yh, int xl, int xh, const double* u,
-    const double* v, const double* w, double gx, double gy, double rho_nodes, double widen) {
-  for (int z = 0; z < planes; ++z) {
-    const double cz = 1.0 - w[z];
-    if (!(cz > 0.0)) continue;
-    // The cross-section's radius in node units (a node rounding moves across the rim adds
-    // (1 - s)^2 ~ 0).
-    const double half = rho_nodes * std::sqrt(cz) + widen;
-    int xa, xe, ya, ye;
-    node_span(gx - half, gx + half, xl, xh, xa, xe);
-    node_span(gy - half, gy + half, yl, yh, ya, ye);
-    double* dst_plane = dst + size_t(z) * plane;
-    for (int y = ya; y <= ye; ++y) {
-      const double c = cz - v[y];
-      double* row = dst_plane + size_t(y) * size_t(nx);
-#pragma omp simd
-      for (int x = xa; x <= xe; ++x) {
-        const double d = c - u[x];
-        const double t = 0.5 * (d + std::abs(d));  // max(d, 0), branch-free
-        row[x] += t * t;
-      }
-    }
-  }
-}
-
-}  // namespace
-
 void DensityField::fill_grid(ScalarGrid& grid) const {
   SYLVA_CHECK(m_index, "DensityField used after move");
   SYLVA_CHECK(grid.dims.x >= 1 && grid.dims.y >= 1 && grid.dims.z >= 1, "grid dims not set");
   SYLVA_CHECK(std::isfinite(grid.spacing) && grid.spacing > 0.0f, "grid spacing must be > 0");
-  const int nx = grid.dims.x, ny = grid.dims.y, nz = grid.dims.z;
-  const int dims[3] = {nx, ny, nz};
-  const size_t plane = size_t(nx) * size_t(ny);
-  grid.values.resize(plane * size_t(nz));
-
-  // Node coordinates exactly as ScalarGrid::position() computes them, so a node's value
-  // matches value(grid.position(...)).
-  std::vector<double> coords[3];
-  for (int a = 0; a < 3; ++a) {
-    coords[a].resize(size_t(dims[a]));
-    for (int i = 0; i < dims[a]; ++i) {
-      glm::ivec3 n(0);
-      n[a] = i;
-      coords[a][size_t(i)] = grid.position(n.x, n.y, n.z)[a];
-    }
-    SYLVA_CHECK(std::isfinite(coords[a].front()) && std::isfinite(coords[a].back()),
-                "grid nodes must be finite");
-  }
-  const std::vector<double>&xs = coords[0], &ys = coords[1], &zs = coords[2];
-
-  const double rho = m_rho;
-  const double inv_r2 = 1.0 / (rho * rho);
-  const double h = grid.spacing;
-  const double rho_nodes = rho / h;
-  // Node ranges are found arithmetically (node i at coords[0] + i h) while the kernel uses
-  // the float node coordinates. Where float rounding moves nodes by more than 1e-4 rho (a
-  // grid far from the origin for its spacing, or a rho below the rounding), the ranges grow
-  // by that many nodes so that no node within rho is missed; otherwise a missed rim node
-  // would add at most (2e-4)^2.
-  double drift = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < dims[a]; ++i)
-      drift = std::max(drift, std::abs(coords[a][size_t(i)] - (coords[a][0] + h * double(i))));
-  const double widen =
-      drift <= 1e-4 * rho ? 0.0 : std::ceil(std::min(drift / h, double(1 << 30))) + 1.0;
-  const double tau = m_tau;
-  const std::vector<glm::vec3>& gens = m_generators;
-  const int64_t count = int64_t(gens.size());
-
-  std::vector<NodeBox> boxes(static_cast<size_t>(count));
-#pragma omp parallel for schedule(static)
-  for (int64_t i = 0; i < count; ++i) {
-    NodeBox box;
-    bool near = true;
-    for (int a = 0; a < 3; ++a) {
-      const double g = (double(gens[size_t(i)][a]) - coords[a][0]) / h;
-      const double lo = g - rho_nodes - 1.0 - widen, hi = g + rho_nodes + 1.0 + widen;
-      near = hi >= 0.0 && lo <= double(dims[a] - 1);
-      if (!near) break;
-      box.lo[a] = int(std::ceil(std::max(lo, 0.0)));
-      box.hi[a] = int(std::floor(std::min(hi, double(dims[a] - 1))));
-    }
-    boxes[size_t(i)] = near ? box : NodeBox{};
-  }
-
-  // Slabs of whole z planes, each filled by one thread. Every node sums its generators in
-  // generator order whatever the slab size or thread count, so the bytes never depend on them.
-  const int slab = std::clamp(int(std::min<size_t>(8, (size_t(1) << 20) / plane)), 1,
-                              std::max(1, std::min(8, nz / 16)));
-  const int slabs = (nz + slab - 1) / slab;
-  auto touches = [&](const NodeBox& b) {
-    return b.lo[0] <= b.hi[0] && b.lo[1] <= b.hi[1] && b.lo[2] <= b.hi[2];
-  };
-  // Generators of each slab, in generator order (counting sort).
-  std::vector<size_t> slab_start(size_t(slabs) + 1, 0);
-  for (const NodeBox& b : boxes)
-    if (touches(b))
-      for (int s = b.lo[2] / slab; s <= b.hi[2] / slab; ++s)
-        ++slab_start[size_t(s) + 1];
-  for (int s = 0; s < slabs; ++s)
-    slab_start[size_t(s) + 1] += slab_start[size_t(s)];
-  std::vector<uint32_t> slab_gens(slab_start.back());
-  {
-    std::vector<size_t> fill(slab_start.begin(), slab_start.end() - 1);
-    for (int64_t i = 0; i < count; ++i) {
-      const NodeBox& b = boxes[size_t(i)];
-      if (touches(b))
-        for (int s = b.lo[2] / slab; s <= b.hi[2] / slab; ++s)
-          slab_gens[fill[size_t(s)]++] = uint32_t(i);
-    }
-  }
-
-#pragma omp parallel
-  {
-    std::vector<double> acc(plane * size_t(slab));
-    std::vector<double> u(static_cast<size_t>(nx)), v(static_cast<size_t>(ny)),
-        w(static_cast<size_t>(nz));
-#pragma omp for schedule(dynamic, 1)
-    for (int s = 0; s < slabs; ++s) {
-      const int z_begin = s * slab, z_end = std::min(nz, z_begin + slab);
-      std::fill(acc.begin(), acc.end(), 0.0);
-      for (size_t k = slab_start[size_t(s)]; k < slab_start[size_t(s) + 1]; ++k) {
-        const uint32_t gi = slab_gens[k];
-        const NodeBox& b = boxes[gi];
-        const glm::dvec3 p = gens[gi];
-        const int xl = b.lo[0], xh = b.hi[0], yl = b.lo[1], yh = b.hi[1];
-        const int zl = std::max(b.lo[2], z_begin), zh = std::min(b.hi[2], z_end - 1);
-        // Squared distances over rho^2 per axis: s = u[x] + v[y] + w[z], and
-        // D = (1 - s)^2 where s < 1 (Luft et al. Eq. 2).
-        for (int x = xl; x <= xh; ++x) {
-          const double d = xs[size_t(x)] - p.x;
-          u[size_t(x)] = d * d * inv_r2;
-        }
-        for (int y = yl; y <= yh; ++y) {
-          const double d = ys[size_t(y)] - p.y;
-          v[size_t(y)] = d * d * inv_r2;
-        }
-        for (int z = zl; z <= zh; ++z) {
-          const double d = zs[size_t(z)] - p.z;
-          w[size_t(z)] = d * d * inv_r2;
-        }
-        const double gx = (p.x - xs[0]) / h;  // generator x in node units
-        splat_planes(acc.data() + size_t(zl - z_begin) * plane, plane, nx, zh - zl + 1, yl, yh, xl,
-                     xh, u.data(), v.data(), w.data() + zl, gx, (p.y - ys[0]) / h, rho_nodes,
-                     widen);
-      }
-      // Luft et al. Eq. 3: F = sum D_i - tau.
-      for (int z = z_begin; z < z_end; ++z) {
-        const double* src = acc.data() + size_t(z - z_begin) * plane;
-        float* dst = grid.values.data() + size_t(z) * plane;
-        for (size_t i = 0; i < plane; ++i)
-          dst[i] = float(src[i] - tau);
-      }
-    }
-  }
+  grid.values.resize(size_t(grid.dims.x) * size_t(grid.dims.y) * size_t(grid.dims.z));
+  const auto nodes = density_splat::grid_nodes(grid, m_rho);
+  const auto boxes = density_splat::node_boxes(m_generators, nodes, m_rho);
+  const auto slabs = density_splat::slab_generators(boxes, nodes);
+  density_splat::splat_slabs(m_generators, boxes, slabs, nodes, m_rho, m_tau, grid);
 }
 
 }  // namespace sylva

@@ -54,34 +54,47 @@ cv::Mat wobble_grid(const Shared& s, const Layer& layer, const cv::Rect& roi, in
   return out;
 }
 
-}  // namespace
+// The layer's bounding box padded by the blur and the wobble, clipped to the image.
+cv::Rect layer_roi(const Shared& s, const Layer& layer) {
+  const int pad = int(std::ceil(3.0f * s.sigma + s.max_wobble)) + 2;
+  return cv::Rect(cv::Point(layer.x0 - pad, layer.y0 - pad),
+                  cv::Point(layer.x1 + 1 + pad, layer.y1 + 1 + pad)) &
+         cv::Rect(cv::Point(0, 0), s.size);
+}
 
-LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
-  const float sigma = s.sigma;
-  const int pad = int(std::ceil(3.0f * sigma + s.max_wobble)) + 2;
-  const cv::Rect roi = cv::Rect(cv::Point(layer.x0 - pad, layer.y0 - pad),
-                                cv::Point(layer.x1 + 1 + pad, layer.y1 + 1 + pad)) &
-                       cv::Rect(cv::Point(0, 0), s.size);
-  LayerOut out;
-  out.roi = roi;
+// The small grids' scale: f x f pixels a cell; pixel centre x + 0.5 maps to (x + 0.5) / f - 0.5.
+struct BlockScale {
+  int f;
+  float inv_f;
+  float half;
+  explicit BlockScale(int f_) : f(f_), inv_f(1.0f / float(f_)), half(0.5f * inv_f - 0.5f) {}
+  float at(int x) const { return float(x) * inv_f + half; }
+};
+
+// The masks at 1/f of the resolution, each cell a share of its f x f block: own = this cluster,
+// known = pixels that do not hide it (itself, the background, clusters behind it), own_depth =
+// this cluster's depth summed over the block's pixels and divided by their count (with detail).
+struct BlockMasks {
+  cv::Mat own, known, own_depth;
+};
+
+// Sums the layer's pixels over the roi into blocks of f x f (the masks are smooth after the blur,
+// and blurring them is most of the pass's time).
+BlockMasks block_masks(const Shared& s, const cv::Rect& roi, int k, int f, bool detail) {
   const int w = roi.width, h = roi.height;
-
-  // The masks are blurred at 1/f of the resolution (they are smooth after the blur, and this
-  // is most of the pass's time): own = this cluster, known = pixels that do not hide it
-  // (itself, the background, clusters behind it), each as its share of an f x f block.
-  const int f = std::clamp(int(sigma / 2.0f), 1, 4);
   const int sw = (w + f - 1) / f, sh = (h + f - 1) / f;
-  const bool detail = s.detail > 0.0f;
-  cv::Mat own(sh, sw, CV_32F, cv::Scalar(0)), known(sh, sw, CV_32F, cv::Scalar(0)), own_depth;
+  BlockMasks b;
+  b.own = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
+  b.known = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
   cv::Mat count(sh, sw, CV_32F, cv::Scalar(0));
-  if (detail) own_depth = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
+  if (detail) b.own_depth = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
   for (int y = 0; y < h; ++y) {
     const int32_t* lab = s.label.ptr<int32_t>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
-    float* o = own.ptr<float>(y / f);
-    float* kn = known.ptr<float>(y / f);
+    float* o = b.own.ptr<float>(y / f);
+    float* kn = b.known.ptr<float>(y / f);
     float* n = count.ptr<float>(y / f);
-    float* od = detail ? own_depth.ptr<float>(y / f) : nullptr;
+    float* od = detail ? b.own_depth.ptr<float>(y / f) : nullptr;
     for (int x = 0; x < w; ++x) {
       const int sx = x / f;
       n[sx] += 1.0f;
@@ -92,27 +105,43 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
       if (lab[x] <= k) kn[sx] += 1.0f;
     }
   }
-  own /= count;
-  known /= count;
-  if (detail) own_depth /= count;
-  const float small_sigma = sigma / float(f);
-  const cv::Mat blurred_own = blur(own, small_sigma);
-  const cv::Mat blurred_known = blur(known, small_sigma);
-  cv::Mat blurred_depth;
-  if (detail) blurred_depth = blur(own_depth, small_sigma);
+  b.own /= count;
+  b.known /= count;
+  if (detail) b.own_depth /= count;
+  return b;
+}
 
-  // The blurred mask, continued under occluders by normalised convolution (only where enough
-  // of the neighbourhood is known, so it stops about two blur radii in); the occluders'
-  // coverage; the blurred depth of this cluster.
-  cv::Mat mask_s(sh, sw, CV_32F), cover_s(sh, sw, CV_32F), depth_s;
-  if (detail) depth_s.create(sh, sw, CV_32F);
+// Each block mask blurred (Gaussian, sigma in cells).
+BlockMasks blur_masks(const BlockMasks& m, float small_sigma, bool detail) {
+  BlockMasks b;
+  b.own = blur(m.own, small_sigma);
+  b.known = blur(m.known, small_sigma);
+  if (detail) b.own_depth = blur(m.own_depth, small_sigma);
+  return b;
+}
+
+// What a wash is painted from, on the small grid: mask, the blurred mask continued under
+// occluders; cover, the occluders' coverage; depth, this cluster's blurred depth (with detail).
+struct SmallFields {
+  cv::Mat mask, cover, depth;
+};
+
+// The blurred mask continued under occluders by normalised convolution (only where enough of
+// the neighbourhood is known, so it stops about two blur radii in); the occluders' coverage; the
+// blurred depth of this cluster.
+SmallFields continue_under_occluders(const BlockMasks& blurred, bool detail) {
+  const int sw = blurred.own.cols, sh = blurred.own.rows;
+  SmallFields out;
+  out.mask.create(sh, sw, CV_32F);
+  out.cover.create(sh, sw, CV_32F);
+  if (detail) out.depth.create(sh, sw, CV_32F);
   for (int y = 0; y < sh; ++y) {
-    const float* bo = blurred_own.ptr<float>(y);
-    const float* bk = blurred_known.ptr<float>(y);
-    const float* bd = detail ? blurred_depth.ptr<float>(y) : nullptr;
-    float* m = mask_s.ptr<float>(y);
-    float* c = cover_s.ptr<float>(y);
-    float* d = detail ? depth_s.ptr<float>(y) : nullptr;
+    const float* bo = blurred.own.ptr<float>(y);
+    const float* bk = blurred.known.ptr<float>(y);
+    const float* bd = detail ? blurred.own_depth.ptr<float>(y) : nullptr;
+    float* m = out.mask.ptr<float>(y);
+    float* c = out.cover.ptr<float>(y);
+    float* d = detail ? out.depth.ptr<float>(y) : nullptr;
     for (int x = 0; x < sw; ++x) {
       const float ratio = bk[x] > 1e-6f ? std::min(1.0f, bo[x] / bk[x]) : 0.0f;
       m[x] = ratio * smoothstep(0.0f, kUnderConfidence, bk[x]);
@@ -122,19 +151,22 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
       if (d) d[x] = bo[x] > 1e-6f ? bd[x] / bo[x] : 0.0f;
     }
   }
+  return out;
+}
 
-  // Full resolution: the mask looked up at a position displaced along the slope of the wash's
-  // own paper (Bousseau's wobbling), both bilinear from their grids.
-  const float inv_f = 1.0f / float(f);
-  const float half = 0.5f * inv_f - 0.5f;  // pixel centre x + 0.5 maps to (x + 0.5) / f - 0.5
-  const int g = std::max(f, kWobbleCell);
+// Full resolution: the mask looked up at a position displaced along the slope of the wash's
+// own paper (Bousseau's wobbling), both bilinear from their grids.
+cv::Mat wobbled_mask(const Shared& s, const Layer& layer, const cv::Rect& roi, const BlockScale& b,
+                     const cv::Mat& mask_s) {
+  const int w = roi.width, h = roi.height;
+  const int g = std::max(b.f, kWobbleCell);
   const cv::Mat wobble = s.wobble_gain > 0.0f ? wobble_grid(s, layer, roi, g) : cv::Mat();
   cv::Mat mask(h, w, CV_32F);
   for (int y = 0; y < h; ++y) {
     float* m = mask.ptr<float>(y);
-    const float sy = float(y) * inv_f + half;
+    const float sy = b.at(y);
     for (int x = 0; x < w; ++x) {
-      const float sx = float(x) * inv_f + half;
+      const float sx = b.at(x);
       if (wobble.empty()) {
         m[x] = sample(mask_s, sx, sy);
         continue;
@@ -142,53 +174,91 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
       // Pixel centre x + 0.5 is at (x + 0.5) / g - 0.5 in the wobble's grid.
       const cv::Vec2f d =
           sample2(wobble, (float(x) + 0.5f) / float(g) - 0.5f, (float(y) + 0.5f) / float(g) - 0.5f);
-      m[x] = sample(mask_s, sx + d[0] * inv_f, sy + d[1] * inv_f);
+      m[x] = sample(mask_s, sx + d[0] * b.inv_f, sy + d[1] * b.inv_f);
     }
   }
+  return mask;
+}
 
+// Pigment pooling at the rim: the factor 1 + edge_gain g^3 on the density, g the mask's gradient
+// magnitude at x (rows above, at and below it) normalised by grad_norm. Cubed: pigment pools
+// in a narrow band at the very rim, not across the whole blur.
+float rim_darkening(const float* mu, const float* m, const float* md, int x, int w, float grad_norm,
+                    float edge_gain) {
+  const float gx = m[std::min(x + 1, w - 1)] - m[std::max(x - 1, 0)];
+  const float gy = md[x] - mu[x];
+  const float g = std::min(1.0f, std::sqrt(gx * gx + gy * gy) * grad_norm);
+  return 1.0f + edge_gain * g * g * g;
+}
+
+// Luft & Deussen's blurred depth test: a leaf in front of its blurred surroundings shows its
+// shading (its luminance relative to the layer's mean), one behind them melts into the wash,
+// with no popping between.
+cv::Vec3f leaf_detail(const Shared& s, const Layer& layer, float blurred_depth, float depth,
+                      float luminance) {
+  cv::Vec3f c = layer.pigment_display;
+  const float in_front = (blurred_depth - depth) / layer.depth_spread;
+  const float show = s.detail * smoothstep(-kDetailBand, kDetailBand, in_front);
+  const float ratio = std::min(luminance / layer.mean_luminance, 2.0f);
+  c *= 1.0f + show * (ratio - 1.0f);
+  return c;
+}
+
+// The wash's optical density over the roi: the wobbled mask thresholded, weakened under nearer
+// clusters, darkened at its rim, tinted with the layer's pigment and its leaves' detail.
+cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect& roi,
+                     const BlockScale& b, const cv::Mat& mask, const SmallFields& small) {
+  const int w = roi.width, h = roi.height;
+  const bool detail = s.detail > 0.0f;
   // Gradient magnitude of a blurred unit step peaks at 1 / (sigma sqrt(2 pi)): normalise by it
   // so edge_darkening means the same at every blur.
-  const float grad_norm = 0.5f * std::max(sigma, 0.5f) * kSqrt2Pi;  // 0.5: central difference
+  const float grad_norm = 0.5f * std::max(s.sigma, 0.5f) * kSqrt2Pi;  // 0.5: central difference
   const float lo = 0.5f - s.half_width, hi = 0.5f + s.half_width;
-  out.density.create(h, w, CV_32FC3);
+  const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
+  cv::Mat density(h, w, CV_32FC3);
   for (int y = 0; y < h; ++y) {
     const float* m = mask.ptr<float>(y);
     const float* mu = mask.ptr<float>(std::max(y - 1, 0));
     const float* md = mask.ptr<float>(std::min(y + 1, h - 1));
-    const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
     const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
     const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
-    const float sy = float(y) * inv_f + half;
-    cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
+    const float sy = b.at(y);
+    cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
     for (int x = 0; x < w; ++x) {
       const float coverage = smoothstep(lo, hi, m[x]);
       if (coverage <= 0.0f) {
         t[x] = cv::Vec3f(0.0f, 0.0f, 0.0f);
         continue;
       }
-      const float sx = float(x) * inv_f + half;
+      const float sx = b.at(x);
       // Under a nearer cluster only part of this wash shows: the glaze over it darkens less
       // than two full washes, as a painter's dilute overlaps do.
-      const float alpha = coverage * (1.0f - (1.0f - kUnderStrength) * sample(cover_s, sx, sy));
-      const float gx = m[std::min(x + 1, w - 1)] - m[std::max(x - 1, 0)];
-      const float gy = md[x] - mu[x];
-      // Cubed: pigment pools in a narrow band at the very rim, not across the whole blur.
-      const float g = std::min(1.0f, std::sqrt(gx * gx + gy * gy) * grad_norm);
-      const float d = 1.0f + s.edge_gain * g * g * g;
-      cv::Vec3f c = layer.pigment_display;
-      if (detail && lab[x] == k) {
-        // Luft & Deussen's blurred depth test: a leaf in front of its blurred surroundings
-        // shows its shading, one behind them melts into the wash, with no popping between.
-        const float in_front = (sample(depth_s, sx, sy) - dep[x]) / layer.depth_spread;
-        const float show = s.detail * smoothstep(-kDetailBand, kDetailBand, in_front);
-        const float ratio = std::min(lum[x] / layer.mean_luminance, 2.0f);
-        c *= 1.0f + show * (ratio - 1.0f);
-      }
+      const float alpha = coverage * (1.0f - (1.0f - kUnderStrength) * sample(small.cover, sx, sy));
+      const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain);
+      const cv::Vec3f c = detail && lab[x] == k
+                              ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
+                              : layer.pigment_display;
       for (int ch = 0; ch < 3; ++ch)
         t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
     }
   }
+  return density;
+}
+
+}  // namespace
+
+LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
+  LayerOut out;
+  out.roi = layer_roi(s, layer);
+  // The masks are blurred at 1/f of the resolution (they are smooth after the blur).
+  const BlockScale scale(std::clamp(int(s.sigma / 2.0f), 1, 4));
+  const bool detail = s.detail > 0.0f;
+  const BlockMasks blocks = block_masks(s, out.roi, k, scale.f, detail);
+  const BlockMasks blurred = blur_masks(blocks, s.sigma / float(scale.f), detail);
+  const SmallFields small = continue_under_occluders(blurred, detail);
+  const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);
+  out.density = wash_density(s, layer, k, out.roi, scale, mask, small);
   return out;
 }
 
