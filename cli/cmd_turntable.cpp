@@ -43,7 +43,7 @@ TurntableOutput turntable_output(const TurntableOptions& o, const TurntableCheck
   TurntableOutput out;
   out.path = o.out;
   out.to_dir = c.to_dir;
-  out.frame_format = o.frame_format;
+  out.frame_format = c.frame_format;
   out.fps = o.fps;
   out.dpi = o.dpi;
   out.frames = o.path.frames;

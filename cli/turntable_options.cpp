@@ -104,10 +104,7 @@ bool check_output(const TurntableOptions& o) {
 }
 
 void check_frame_format(const TurntableOptions& o, const TurntableChecks& c) {
-  const std::string& ff = o.frame_format;
-  if (ff != "png" && ff != "exr" && ff != "svg" && ff != "pdf")
-    throw InputError("--frame-format", "must be png, exr, svg or pdf, not '" + ff + "'");
-  if (ff != "png" && !c.to_dir)
+  if (c.frame_format != FrameFormat::Png && !c.to_dir)
     throw InputError("--frame-format", "exr, svg and pdf frames need a folder output");
   if (c.vector) require_line_style(*c.style, "--style");
   check_dpi(o.dpi, "--dpi");
@@ -152,7 +149,8 @@ TurntableChecks check_turntable_options(const CLI::App& cmd, TurntableOptions& o
   c.range = parse_frame_range(o.range, o.path.frames);
   c.style = resolve_style(cmd, o.style, o.sets);
   c.blobs = c.style->traits().blob_outlines;
-  c.vector = o.frame_format == "svg" || o.frame_format == "pdf";
+  c.frame_format = parse_frame_format(o.frame_format, "--frame-format");
+  c.vector = is_vector_format(c.frame_format);
   check_frame_format(o, c);
   check_keyframe_options(o, c);
   return c;

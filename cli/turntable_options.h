@@ -9,6 +9,7 @@
 
 #include "cli/common_options.h"
 #include "cli/illumination_options.h"
+#include "styles/frame_folder.h"
 #include "styles/style.h"
 #include "styles/turntable.h"
 
@@ -35,9 +36,10 @@ void add_turntable_options(CLI::App& cmd, TurntableOptions& o);
 
 // What the checked options mean.
 struct TurntableChecks {
-  bool to_dir = false;  // frames into a folder (not an MP4 or GIF)
-  bool blobs = false;   // the style paints blobs
-  bool vector = false;  // svg or pdf frames
+  bool to_dir = false;                          // frames into a folder (not an MP4 or GIF)
+  bool blobs = false;                           // the style paints blobs
+  bool vector = false;                          // svg or pdf frames
+  FrameFormat frame_format = FrameFormat::Png;  // --frame-format
   FrameRange range;
   std::unique_ptr<Style> style;
 };

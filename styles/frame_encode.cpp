@@ -29,8 +29,8 @@ int frames_in_folder(const EncodeOptions& o) {
   std::string other;
   for (const auto& entry : fs::directory_iterator(o.dir, ec)) {
     const std::string name = entry.path().filename().string();
-    highest = std::max(highest, frame_index_of(name, "png"));
-    for (const char* format : {"exr", "svg", "pdf"})
+    highest = std::max(highest, frame_index_of(name, FrameFormat::Png));
+    for (FrameFormat format : {FrameFormat::Exr, FrameFormat::Svg, FrameFormat::Pdf})
       if (frame_index_of(name, format) >= 0) other = name;
   }
   if (ec) throw InputError(o.dir, "cannot read the folder: " + ec.message());

@@ -12,14 +12,36 @@ namespace fs = std::filesystem;
 
 namespace sylva {
 
-std::string frame_file_name(int frame, const std::string& format) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame-%05d.", frame);
-  return name + format;
+const char* frame_format_name(FrameFormat format) {
+  switch (format) {
+    case FrameFormat::Png:
+      return "png";
+    case FrameFormat::Exr:
+      return "exr";
+    case FrameFormat::Svg:
+      return "svg";
+    case FrameFormat::Pdf:
+      return "pdf";
+  }
+  return "png";
 }
 
-int frame_index_of(const std::string& name, const std::string& format) {
-  const std::string prefix = "frame-", suffix = "." + format;
+FrameFormat parse_frame_format(const std::string& name, const std::string& where) {
+  for (FrameFormat f : {FrameFormat::Png, FrameFormat::Exr, FrameFormat::Svg, FrameFormat::Pdf})
+    if (name == frame_format_name(f)) return f;
+  throw InputError(where, "must be png, exr, svg or pdf, not '" + name + "'");
+}
+
+std::string frame_file_name(int frame, FrameFormat format) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%05d.", frame);
+  return std::string(name) + frame_format_name(format);
+}
+
+int frame_index_of(const std::string& name, FrameFormat format) {
+  const std::string prefix = "frame-";
+  std::string suffix = ".";
+  suffix += frame_format_name(format);
   if (name.size() != prefix.size() + 5 + suffix.size() || !name.starts_with(prefix) ||
       !name.ends_with(suffix))
     return -1;
@@ -31,7 +53,7 @@ int frame_index_of(const std::string& name, const std::string& format) {
   return index;
 }
 
-std::string frame_problem(const std::string& path, const std::string& format) {
+std::string frame_problem(const std::string& path, FrameFormat format) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return "no such file";
   std::string bytes;
@@ -41,7 +63,7 @@ std::string frame_problem(const std::string& path, const std::string& format) {
     return e.what();
   }
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  if (format == "png") {
+  if (format == FrameFormat::Png) {
     DecodeReport report;
     if (!decode_png(data, bytes.size(), &report).empty()) return "";
     return "cannot decode the image" + (report.error.empty() ? "" : ": " + report.error);
@@ -50,15 +72,14 @@ std::string frame_problem(const std::string& path, const std::string& format) {
     const size_t end = bytes.find_last_not_of(" \r\n");
     return end != std::string::npos && std::string_view(bytes.data(), end + 1).ends_with(tail);
   };
-  if (format == "svg") return ends_with("</svg>") ? "" : "truncated (no closing </svg>)";
-  if (format == "pdf") return ends_with("%%EOF") ? "" : "truncated (no %%EOF)";
+  if (format == FrameFormat::Svg) return ends_with("</svg>") ? "" : "truncated (no closing </svg>)";
+  if (format == FrameFormat::Pdf) return ends_with("%%EOF") ? "" : "truncated (no %%EOF)";
   const bool exr =
       bytes.size() > 4 && data[0] == 0x76 && data[1] == 0x2f && data[2] == 0x31 && data[3] == 0x01;
   return exr ? "" : "not an OpenEXR file";
 }
 
-int remove_stale_frame_temporaries(const std::string& dir, int begin, int end,
-                                   const std::string& format) {
+int remove_stale_frame_temporaries(const std::string& dir, int begin, int end, FrameFormat format) {
   std::error_code ec;
   int removed = 0;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {

@@ -41,7 +41,7 @@ std::string FrameSink::file(int frame) const {
 }
 
 void FrameSink::write(int frame, const TurntableFrame& f) {
-  const bool vector = m_out.frame_format == "svg" || m_out.frame_format == "pdf";
+  const bool vector = is_vector_format(m_out.frame_format);
   if (m_out.to_dir && vector) {
     write_vector_drawing(file(frame), *f.strokes, m_out.page);
   } else if (m_out.to_dir) {
@@ -89,7 +89,7 @@ void CoherenceReport::add(int frame, double seconds, TurntableFrame now) {
 namespace {
 
 // With resume: whether frame `frame` is kept; a damaged one is rendered again.
-bool keep_frame(const TurntableLoop& loop, const std::string& file, const std::string& format,
+bool keep_frame(const TurntableLoop& loop, const std::string& file, FrameFormat format,
                 Progress& progress, int frame) {
   if (!loop.resume) return false;
   std::error_code ec;
@@ -110,7 +110,7 @@ bool keep_frame(const TurntableLoop& loop, const std::string& file, const std::s
 
 TurntableCount render_turntable_frames(TurntableRenderer& renderer, FrameSink& sink,
                                        const TurntableLoop& loop, CoherenceReport& report) {
-  const std::string& format = sink.output().frame_format;
+  const FrameFormat format = sink.output().frame_format;
   if (loop.resume)
     remove_stale_frame_temporaries(sink.output().path, loop.range.begin, loop.range.end, format);
   TurntableCount n;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/io/gif_writer.h"
+#include "styles/frame_folder.h"
 #include "styles/style_files.h"
 #include "styles/turntable.h"
 #include "styles/turntable_frames.h"
@@ -20,14 +21,14 @@
 namespace sylva {
 
 struct TurntableOutput {
-  std::string path;                  // .mp4, .gif or a folder
-  bool to_dir = false;               // a folder of frames
-  std::string frame_format = "png";  // folder frames: png, exr, svg or pdf (strokes)
-  double fps = 30;                   // MP4 and GIF, [1, 240]
-  double dpi = 0;                    // folder frames (style_files.h)
-  int frames = 0;                    // frames of the whole animation
-  VectorPage page;                   // svg and pdf frames
-  bool quiet = false;                // no progress while an MP4 is encoded
+  std::string path;                             // .mp4, .gif or a folder
+  bool to_dir = false;                          // a folder of frames
+  FrameFormat frame_format = FrameFormat::Png;  // folder frames: images or strokes (svg, pdf)
+  double fps = 30;                              // MP4 and GIF, [1, 240]
+  double dpi = 0;                               // folder frames (style_files.h)
+  int frames = 0;                               // frames of the whole animation
+  VectorPage page;                              // svg and pdf frames
+  bool quiet = false;                           // no progress while an MP4 is encoded
 };
 
 // Where the frames go. Made before the first frame, so a bad output fails before any render:
