@@ -29,6 +29,15 @@ void paint_strokes(cairo_t* cr, const StrokeDrawing& d, double scale) {
   for (const Stroke& s : d.strokes) {
     if (s.points.empty() || s.opacity <= 0.0f) continue;
     cairo_set_source_rgba(cr, r, g, b, s.opacity);
+    if (s.filled) {
+      trace_polyline(cr, s.points, true, scale);
+      for (const std::vector<glm::vec2>& hole : s.holes)
+        if (!hole.empty()) trace_polyline(cr, hole, true, scale);
+      cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+      cairo_fill(cr);
+      cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+      continue;
+    }
     if (s.constant_width() && s.points.size() > 1) {
       trace_polyline(cr, s.points, s.closed, scale);
       cairo_set_line_width(cr, s.width * scale);

@@ -20,6 +20,10 @@ const char* line_class_name(LineClass c) {
       return "detail";
     case LineClass::Tone:
       return "tone";
+    case LineClass::Foliage:
+      return "foliage";
+    case LineClass::Shadow:
+      return "shadow";
   }
   return "?";
 }

@@ -18,10 +18,21 @@ namespace sylva {
 
 // The line hierarchy (issue "Ink for illustrators"): the plant's outer silhouette, interior
 // crown contours (one part of the crown in front of another), wood (trunk and branch
-// outlines), leaf-level detail, and tone (hatching or stippling).
-enum class LineClass : uint8_t { Silhouette = 0, Interior = 1, Wood = 2, Detail = 3, Tone = 4 };
-inline constexpr int kLineClassCount = 5;
-const char* line_class_name(LineClass c);  // "silhouette", "interior", "wood", "detail", "tone"
+// outlines), leaf-level detail, tone (hatching or stippling), the foliage's drawing primitives
+// (Deussen & Strothotte's leaf outlines, passes/leaf_primitives.h) and shadow (the black
+// masses of the deep shadow, filled regions).
+enum class LineClass : uint8_t {
+  Silhouette = 0,
+  Interior = 1,
+  Wood = 2,
+  Detail = 3,
+  Tone = 4,
+  Foliage = 5,
+  Shadow = 6
+};
+inline constexpr int kLineClassCount = 7;
+// "silhouette", "interior", "wood", "detail", "tone", "foliage", "shadow"
+const char* line_class_name(LineClass c);
 
 struct Stroke {
   std::vector<glm::vec2> points;  // px; one point = a dot
@@ -31,6 +42,10 @@ struct Stroke {
   float opacity = 1.0f;  // [0, 1]
   LineClass cls = LineClass::Silhouette;
   bool closed = false;  // the last point joins the first
+  // A filled region rather than a line: `points` is its outer ring (closed) and `holes` the
+  // rings cut out of it, filled by the even-odd rule; widths and width are not used.
+  bool filled = false;
+  std::vector<std::vector<glm::vec2>> holes;
   bool constant_width() const { return widths.empty(); }
 };
 

@@ -13,13 +13,14 @@ namespace {
 
 constexpr int kMaxCuts = 16;                 // sub-triangles per side
 constexpr float kSpacingShare = 1.0f / 400;  // of the plant's diagonal
-// At most this many samples from an instanced scene's instances (36 bytes each).
+// At most this many samples from an instanced scene's instances (40 bytes each).
 constexpr size_t kMaxSamples = size_t(1) << 22;
 
 struct Corners {
   glm::vec3 p[3];
   glm::vec2 uv[3];
   uint32_t cluster = 0;
+  uint32_t primitive = 0;
 };
 
 // The k x k sub-triangles' centroids in barycentric (u, v) of corners 1 and 2: for each
@@ -50,6 +51,7 @@ void sample_triangle(const Scene& scene, const Material* cutout, const Corners& 
     out.normals.push_back(normal);
     out.areas.push_back(piece);
     out.clusters.push_back(c.cluster);
+    out.primitives.push_back(c.primitive);
   });
 }
 
@@ -68,6 +70,7 @@ void sample_meshes(const Scene& scene, const std::vector<uint32_t>& meshes, floa
       if (role == Role::Ground) continue;
       Corners c;
       c.cluster = t < m.cluster_ids.size() ? m.cluster_ids[t] : 0;
+      c.primitive = t < m.primitive_ids.size() ? m.primitive_ids[t] : 0;
       for (int i = 0; i < 3; ++i) {
         const uint32_t v = m.indices[3 * t + size_t(i)];
         c.p[i] = m.positions[v];
@@ -106,6 +109,7 @@ void add_instance(const SurfaceSamples& plant, const std::vector<char>& foliage,
     out.areas.push_back(float(double(plant.areas[k]) * det * len / keep));
     const bool own = foliage[k] || branch_cluster == 0;
     out.clusters.push_back(own ? plant.clusters[k] + base.cluster : branch_cluster);
+    out.primitives.push_back(plant.primitives[k]);
     out.instances.push_back(uint32_t(i + 1));
   }
 }
@@ -141,6 +145,7 @@ SurfaceSamples sample_instances(const Scene& scene, float spacing) {
   const size_t reserve = size_t(std::min(total, double(kMaxSamples)));
   out.positions.reserve(reserve), out.normals.reserve(reserve);
   out.areas.reserve(reserve), out.clusters.reserve(reserve), out.instances.reserve(reserve);
+  out.primitives.reserve(reserve);
   for (size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     add_instance(plants[inst.plant], foliage[inst.plant], i, inst.transform, ids.bases[i],

@@ -12,7 +12,7 @@
 // An instanced scene (core/scene/instances.h) is sampled once per plant, in the plant's own
 // space at the spacing its largest instance needs, and the points are placed by every instance
 // (positions and normals moved, areas scaled, clusters those of the id buffer). Past 2^22
-// points (150 MB) each instance's points are thinned evenly by a seeded hash, their areas
+// points (170 MB) each instance's points are thinned evenly by a seeded hash, their areas
 // raised to keep the total: the coverage of a park stays right at the park's scale, while a
 // close view of one of hundreds of trees gets fewer points than the tree alone would.
 //
@@ -35,8 +35,10 @@ struct SurfaceSamples {
   std::vector<glm::vec3> normals;    // unit: the triangle's geometric normal (either side)
   std::vector<float> areas;          // scene units², > 0
   std::vector<uint32_t> clusters;    // the triangle's cluster id (Mesh::cluster_ids; 0 = none)
-  std::vector<uint32_t> instances;   // a scene of many plants: the instance's index + 1; else empty
-  float spacing = 0.0f;              // scene units
+  // The triangle's primitive id (Mesh::primitive_ids: a leaf; 0 = none), unique per plant.
+  std::vector<uint32_t> primitives;
+  std::vector<uint32_t> instances;  // a scene of many plants: the instance's index + 1; else empty
+  float spacing = 0.0f;             // scene units
   size_t size() const { return positions.size(); }
 };
 

@@ -15,6 +15,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "passes/pass_common.h"
+
 namespace sylva {
 
 // Cracks of a W x H image.
@@ -33,6 +35,25 @@ struct Polyline {
 };
 
 std::vector<Polyline> chain_cracks(const Cracks& cracks);
+
+// Sets every crack (p, q) of `c` for which mark(p_index, q_index) holds (indices y * W + x),
+// in parallel row bands; each band writes only its own rows.
+template <class Mark>
+void mark_cracks(Cracks& c, Mark mark) {
+  const cv::Size size = c.image();
+  const int w = size.width, h = size.height;
+  for_bands(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      uint8_t* cx = c.x.empty() ? nullptr : c.x.ptr<uint8_t>(y);
+      for (int x = 0; x + 1 < w; ++x)
+        cx[x] = mark(y * w + x, y * w + x + 1) ? 255 : 0;
+      if (y + 1 >= h) continue;
+      uint8_t* cy = c.y.ptr<uint8_t>(y);
+      for (int x = 0; x < w; ++x)
+        cy[x] = mark(y * w + x, (y + 1) * w + x) ? 255 : 0;
+    }
+  });
+}
 
 // Total length in px (with the closing segment of a closed polyline).
 double polyline_length(const Polyline& p);

@@ -14,6 +14,7 @@
 #include "passes/ink_abstraction.h"
 #include "passes/ink_working.h"
 #include "passes/pass_common.h"
+#include "passes/tone_rank.h"
 
 namespace sylva {
 
@@ -280,22 +281,6 @@ bool clipped_line(const cv::Mat& inside, cv::Point2f centre, cv::Point2f dir, do
 }
 
 }  // namespace
-
-cv::Mat tone_darkness(const cv::Mat& color) {
-  expect_image(color, CV_8UC4, {}, "color");
-  cv::Mat dark(color.size(), CV_32FC1, cv::Scalar(0));
-  for_bands(color.rows, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < color.cols; ++x) {
-        const cv::Vec4b c = color.at<cv::Vec4b>(y, x);
-        if (c[3] < 128) continue;
-        // Rec. 709 luma of the sRGB-encoded values: the tone as the eye reads it.
-        const float luma = (0.0722f * c[0] + 0.7152f * c[1] + 0.2126f * c[2]) / 255.0f;
-        dark.at<float>(y, x) = std::clamp(1.0f - luma, 0.0f, 1.0f);
-      }
-  });
-  return dark;
-}
 
 namespace {
 

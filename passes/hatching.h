@@ -116,9 +116,6 @@ double units_per_px(const Camera& camera, const Sphere& sphere);
 StrokeDrawing tone_strokes(const ToneImages& in, const ToneView& view, const PenParams& p,
                            double detail);
 
-// The darkness of a colour image (before smoothing): CV_32FC1 in [0, 1], 0 off the plant.
-cv::Mat tone_darkness(const cv::Mat& color);
-
 struct ToneResources {
   ImageHandle position{}, id{}, color{};
   SamplesHandle samples{};  // "surface-samples", or none

@@ -20,6 +20,8 @@ const LineClassParams& InkLineParams::of(LineClass c) const {
       return interior;
     case LineClass::Wood:
       return wood;
+    case LineClass::Foliage:
+      return foliage;
     default:
       return detail_lines;
   }
@@ -130,6 +132,13 @@ void bind_ink_line_params(ParamSet& set, InkLineParams& p) {
   bind_class(set, "interior", "interior crown contours", p.interior);
   bind_class(set, "wood", "trunk and branch outlines", p.wood);
   bind_class(set, "detail", "leaf-level detail lines", p.detail_lines);
+  bind_class(set, "foliage", "the foliage primitives' outlines inside the crown", p.foliage);
+  set.add_bool("lines.outline", p.outline,
+               "the plant's outline as one contour enclosing the crown (off: the foliage "
+               "primitives draw the silhouette)");
+  set.add_bool("lines.wood_shade", p.wood_shade,
+               "hatching along the trunk and branches on their shadow side (with the foliage "
+               "primitives)");
   set.add_bool("lines.plants", p.plants,
                "in a scene of many plants, outline each plant where its crown stands in front of "
                "another's (as silhouette lines)");
@@ -148,7 +157,7 @@ StrokeDrawing ink_line_strokes(const InkLineImages& in, const EdgeParams& edges,
   for (LineClass cls :
        {LineClass::Detail, LineClass::Wood, LineClass::Interior, LineClass::Silhouette}) {
     const LineClassParams& c = p.of(cls);
-    if (!c.on || c.tone <= 0.0f) continue;
+    if (!c.on || c.tone <= 0.0f || (cls == LineClass::Silhouette && !p.outline)) continue;
     const bool crown = cls == LineClass::Silhouette || cls == LineClass::Interior;
     const bool abstracted = crown && detail >= 2.0;
     // All but the detail lines come at the marks' working resolution: `f` output px per point.
@@ -217,9 +226,10 @@ Handle<StrokeDrawing> add_ink_lines_pass(RenderGraph& g, const InkLineResources&
 }
 
 Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawing> first,
-                                             Handle<StrokeDrawing> second) {
-  const auto out = g.resource<StrokeDrawing>("drawing");
-  g.add_pass("drawing", {first, second}, {out}, [=](PassContext& ctx) {
+                                             Handle<StrokeDrawing> second,
+                                             const std::string& name) {
+  const auto out = g.resource<StrokeDrawing>(name);
+  g.add_pass(name, {first, second}, {out}, [=](PassContext& ctx) {
     StrokeDrawing d = ctx.read<StrokeDrawing>(first);
     const StrokeDrawing& b = ctx.read<StrokeDrawing>(second);
     d.color = b.color;

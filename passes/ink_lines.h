@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "core/gl/camera.h"
 #include "core/graph/render_graph.h"
@@ -74,6 +75,16 @@ struct InkLineParams {
   LineClassParams interior{true, 1.3f, 1.0f, 0.0f, 1.0f};
   LineClassParams wood{true, 1.3f, 1.0f, 0.0f, 1.0f};
   LineClassParams detail_lines{false, 0.8f, 0.6f, 0.0f, 1.0f};
+  // The foliage primitives' outlines inside the crown (passes/leaf_primitives.h); their
+  // outlines against the paper are silhouette lines.
+  LineClassParams foliage{true, 1.0f, 1.0f, 0.0f, 1.0f};
+  // lines.outline: the plant's outline as one contour enclosing the crown (the crown field's
+  // level set, with the thin parts' centre lines), as the `outline` preset draws it; off when
+  // the foliage primitives draw the silhouette. Default false.
+  bool outline = false;
+  // lines.wood_shade: hatching along the trunk and branches on their shadow side
+  // (passes/hatch_groups.h; with the foliage primitives). Default true.
+  bool wood_shade = true;
   // lines.plants: in a scene of many plants, outline each plant where it stands in front of
   // another (silhouette lines). Default true.
   bool plants = true;
@@ -112,10 +123,11 @@ Handle<StrokeDrawing> add_ink_lines_pass(RenderGraph& g, const InkLineResources&
                                          const EdgeParams& edges, const InkLineParams& p,
                                          uint32_t branch_cluster);
 
-// Adds the pass "drawing" and returns its output "drawing": the StrokeDrawing `first` with the
+// Adds the pass `name` and returns its output `name`: the StrokeDrawing `first` with the
 // strokes of `second` drawn after (over) them.
 Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawing> first,
-                                             Handle<StrokeDrawing> second);
+                                             Handle<StrokeDrawing> second,
+                                             const std::string& name = "drawing");
 
 // Adds the pass "stroke-raster" reading a StrokeDrawing resource and returns "lines", its ink
 // coverage (CV_32FC1 in [0, 1], core/stroke_render.h).

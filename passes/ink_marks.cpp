@@ -15,25 +15,6 @@ namespace sylva {
 
 namespace {
 
-// Sets every crack (p, q) of `c` for which mark(p_index, q_index) holds (indices y * W + x),
-// in parallel row bands; each band writes only its own rows.
-template <class Mark>
-void mark_cracks(Cracks& c, Mark mark) {
-  const cv::Size size = c.image();
-  const int w = size.width, h = size.height;
-  for_bands(h, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      uint8_t* cx = c.x.empty() ? nullptr : c.x.ptr<uint8_t>(y);
-      for (int x = 0; x + 1 < w; ++x)
-        cx[x] = mark(y * w + x, y * w + x + 1) ? 255 : 0;
-      if (y + 1 >= h) continue;
-      uint8_t* cy = c.y.ptr<uint8_t>(y);
-      for (int x = 0; x < w; ++x)
-        cy[x] = mark(y * w + x, (y + 1) * w + x) ? 255 : 0;
-    }
-  });
-}
-
 cv::Mat disc(double diameter) {
   const int k = std::max(1, static_cast<int>(std::lround(diameter)) | 1);
   return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});

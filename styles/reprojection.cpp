@@ -100,19 +100,48 @@ double reprojection_error(const CoherenceFrame& previous, const CoherenceFrame& 
   return pixels > 0 ? sum / (3.0 * double(pixels)) : 0.0;
 }
 
-// Share of `from`'s line pixels on the plant, seen by `to`, with no line of `to` within
-// kLineReach px of their place there; `to_reach` is the distance to `to`'s nearest line pixel.
+// For every pixel of `f`, the plant pixel nearest to it (itself on the plant); (-1, -1) when the
+// frame shows no plant.
+cv::Mat nearest_plant(const CoherenceFrame& f) {
+  cv::Mat off(f.position.size(), CV_8UC1), dist, labels;
+  for (int y = 0; y < off.rows; ++y)
+    for (int x = 0; x < off.cols; ++x)
+      off.at<uint8_t>(y, x) = on_plant(f, x, y) ? 0 : 255;
+  cv::Mat nearest(off.size(), CV_32SC2, cv::Scalar(-1, -1));
+  if (cv::countNonZero(off) == int(off.total())) return nearest;
+  cv::distanceTransform(off, dist, labels, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_PIXEL);
+  std::vector<cv::Vec2i> where(size_t(off.total()) + 1, cv::Vec2i(-1, -1));
+  for (int y = 0; y < off.rows; ++y)
+    for (int x = 0; x < off.cols; ++x)
+      if (!off.at<uint8_t>(y, x)) where[size_t(labels.at<int>(y, x))] = cv::Vec2i(x, y);
+  for (int y = 0; y < off.rows; ++y)
+    for (int x = 0; x < off.cols; ++x)
+      nearest.at<cv::Vec2i>(y, x) =
+          off.at<uint8_t>(y, x) ? where[size_t(labels.at<int>(y, x))] : cv::Vec2i(x, y);
+  return nearest;
+}
+
+// Share of `from`'s line pixels, seen by `to`, with no line of `to` within kLineReach px of
+// their place there; `to_reach` is the distance to `to`'s nearest line pixel. A line pixel
+// beside the plant moves as the plant pixel nearest to it does (and counts where `to` sees
+// that one).
 std::optional<double> popped(const CoherenceFrame& from, const CoherenceFrame& to,
                              const cv::Mat& to_reach) {
   const Reprojector into(from.camera, to);
+  const cv::Mat nearest = nearest_plant(from);
   size_t seen = 0, lost = 0;
   for (int y = 0; y < from.lines.rows; ++y)
     for (int x = 0; x < from.lines.cols; ++x) {
-      if (!from.lines.at<uint8_t>(y, x) || !on_plant(from, x, y)) continue;
+      if (!from.lines.at<uint8_t>(y, x)) continue;
+      const cv::Vec2i q = nearest.at<cv::Vec2i>(y, x);
+      if (q[0] < 0) continue;
       glm::vec2 at;
-      if (!into.place(from.position.at<cv::Vec3f>(y, x), at)) continue;
+      if (!into.place(from.position.at<cv::Vec3f>(q[1], q[0]), at)) continue;
+      at += glm::vec2(float(x - q[0]), float(y - q[1]));
+      const int u = int(std::floor(at.x)), v = int(std::floor(at.y));
+      if (u < 0 || v < 0 || u >= to_reach.cols || v >= to_reach.rows) continue;
       ++seen;
-      lost += to_reach.at<float>(int(std::floor(at.y)), int(std::floor(at.x))) > kLineReach;
+      lost += to_reach.at<float>(v, u) > kLineReach;
     }
   if (seen == 0) return std::nullopt;
   return double(lost) / double(seen);

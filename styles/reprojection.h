@@ -7,9 +7,10 @@
 // reprojection_error: the mean |difference| of B, G, R in 8-bit levels between frame i's pixel
 // and frame i-1 sampled (bilinearly) at its reprojected place, over frame i's plant pixels that
 // frame i-1 also sees (its depth at that place within 1 % of the reprojected depth).
-// line_pop: of the line pixels on the plant that both frames see, the share with no line pixel
-// of the other frame within 1.5 px of their reprojected place; the larger of the two directions
-// (lines that vanish, and lines that appear).
+// line_pop: of the line pixels that both frames see, the share with no line pixel of the other
+// frame within 1.5 px of their reprojected place; the larger of the two directions (lines that
+// vanish, and lines that appear). A line pixel beside the plant (an outline over the paper)
+// moves as the plant pixel nearest to it does, and is seen where that one is.
 //
 // Reads, per frame: the style's image (CV_8UC4), the view-space positions (CV_32FC3, 0 =
 // background), the line pixels (CV_8UC1, non-zero = line; may be empty) and the camera.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "npr/leaf_pieces.h"
 #include "npr/surface_samples.h"
 
 namespace sylva {
@@ -170,6 +171,10 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
   const SamplesHandle samples =
       scene.scene ? add_surface_samples_pass(graph, scene.scene, scene.samples_memo)
                   : SamplesHandle{};
+  const LeafPiecesHandle pieces =
+      samples.valid()
+          ? add_leaf_pieces_pass(graph, samples, scene.branch_cluster, scene.pieces_memo)
+          : LeafPiecesHandle{};
   for (size_t i = 0; i < styles.size(); ++i) {
     const Style& style = *styles[i];
     RasterSetup setup = scene.raster;
@@ -232,6 +237,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.branch_cluster = scene.branch_cluster;
     context.blobs = scene.blobs;
     context.surface_samples = samples;
+    context.leaf_pieces = pieces;
     auto s = scope("cell-" + std::to_string(i));
     const StyleOutput out = style.build(graph, rasters[rkey], context);
     // Vector output needs the strokes only: the raster ink and its composite are culled.

@@ -15,6 +15,7 @@
 namespace sylva {
 struct AoMemo;             // npr/ao_pass.h
 struct SurfaceSampleMemo;  // npr/surface_samples.h
+struct LeafPieceMemo;      // npr/leaf_pieces.h
 }  // namespace sylva
 
 namespace sylva {
@@ -72,6 +73,8 @@ struct SheetScene {
   // Set for many frames of one scene: the surface samples of the ink lines' crown coverage
   // are made once. Null: per graph.
   std::shared_ptr<SurfaceSampleMemo> samples_memo;
+  // Likewise the foliage's drawing primitives (npr/leaf_pieces.h). Null: per graph.
+  std::shared_ptr<LeafPieceMemo> pieces_memo;
 };
 
 // Every field for `scene` (outlives the sheet) seen through `raster`; the preprocessing of

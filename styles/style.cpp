@@ -3,7 +3,9 @@
 #include "core/error.h"
 #include "passes/background.h"
 #include "passes/blobs.h"
+#include "passes/hatch_groups.h"
 #include "passes/pass_common.h"
+#include "passes/wood_lines.h"
 #include "styles/blob_raster.h"
 
 namespace sylva {
@@ -15,6 +17,25 @@ StyleOutput build_shaded(RenderGraph&, const GBufferHandles& gbuffer, const Styl
 
 namespace {
 
+// The key light in world space (a headlight, no lights, has none): a direction toward it or
+// its place.
+KeyLight key_light_of(const StyleContext& context) {
+  KeyLight k;
+  const int key = toon_key_light(context.lighting);
+  if (key < 0) return k;
+  const Light& light = context.lighting.lights[static_cast<size_t>(key)];
+  k.on = true;
+  k.point = light.type == Light::Type::Point;
+  k.toward = light.vector;
+  if (light.camera_fixed) {  // view space -> world space
+    const glm::mat4 to_world = glm::inverse(context.view);
+    k.toward =
+        k.point ? glm::vec3(to_world * glm::vec4(k.toward, 1.0f)) : glm::mat3(to_world) * k.toward;
+  }
+  k.sphere = context.shadow_sphere.empty() ? context.scene_sphere : context.shadow_sphere;
+  return k;
+}
+
 // The key light's shadow map: the scene's depth seen from the light (toon_key_light), as a
 // resource holding a ToonShadowMap. A headlight (no lights) casts no visible shadow, so it
 // gets an empty map.
@@ -24,24 +45,18 @@ Handle<ToonShadowMap> add_key_shadow_pass(RenderGraph& graph, const StyleContext
               "toon.cast_shadows: the style context has no scene to render the shadow map from");
   GraphScope scope(graph, "key-shadow");
   const auto out = graph.resource<ToonShadowMap>("shadow-map");
-  const int key = toon_key_light(context.lighting);
-  if (key < 0) {
+  const KeyLight key = key_light_of(context);
+  if (!key.on) {
     graph.add_pass("shadow-map", {}, {out},
                    [out](PassContext& ctx) { ctx.write(out, ToonShadowMap{}); });
     return out;
   }
-  const Light& light = context.lighting.lights[static_cast<size_t>(key)];
-  const bool point = light.type == Light::Type::Point;
-  glm::vec3 v = light.vector;
-  if (light.camera_fixed) {  // view space -> world space
-    const glm::mat4 to_world = glm::inverse(context.view);
-    v = point ? glm::vec3(to_world * glm::vec4(v, 1.0f)) : glm::mat3(to_world) * v;
-  }
   RasterSetup rs;
   rs.rasterizer = context.rasterizer;
   rs.camera = context.shadow_sphere.empty()
-                  ? make_light_camera(context.scene_sphere, v, point, size)
-                  : make_light_camera(context.shadow_sphere, v, point, size, context.scene_sphere);
+                  ? make_light_camera(context.scene_sphere, key.toward, key.point, size)
+                  : make_light_camera(context.shadow_sphere, key.toward, key.point, size,
+                                      context.scene_sphere);
   rs.lighting = context.lighting;
   const GBufferHandles g = add_raster_pass(graph, rs);
   const glm::mat4 view = rs.camera.view, proj = rs.camera.proj;
@@ -72,18 +87,83 @@ StyleOutput build_toon(RenderGraph& graph, const GBufferHandles& gbuffer, const 
                               context.background)};
 }
 
+namespace {
+
+// The strokes `a` with `b` drawn over them; either may be none.
+Handle<StrokeDrawing> over(RenderGraph& graph, Handle<StrokeDrawing> a, Handle<StrokeDrawing> b,
+                           const std::string& name) {
+  if (!a.valid()) return b;
+  if (!b.valid()) return a;
+  return add_merge_strokes_pass(graph, a, b, name);
+}
+
+struct LineDrawing {
+  Handle<StrokeDrawing> strokes;
+  Handle<LeafLayer> leaves;  // none without foliage primitives
+};
+
+// The line drawing: the foliage primitives (passes/leaf_primitives.h) and the wood drawn where
+// it is seen (passes/wood_lines.h), or with lines.outline the crown's one contour and the wood
+// at the working resolution; interior and detail lines from passes/ink_lines.h when on.
+LineDrawing add_line_drawing(RenderGraph& graph, const GBufferHandles& gbuffer,
+                             const StyleParams& params, const StyleContext& context) {
+  const InkLineParams& lines = params.lines;
+  InkLineParams rest = lines;
+  if (!lines.outline) rest.silhouette.on = rest.wood.on = false;
+  Handle<StrokeDrawing> strokes;
+  if (lines.outline || rest.interior.on || rest.detail_lines.on) {
+    InkLineResources r;
+    r.color = gbuffer.color;
+    r.depth = gbuffer.depth;
+    r.normal = gbuffer.normal;
+    r.id = gbuffer.id;
+    r.samples = context.surface_samples;
+    r.camera = context.camera;
+    strokes = add_ink_lines_pass(graph, r, params.edges, rest, context.branch_cluster);
+  }
+  if (lines.outline) return {strokes, {}};
+  WoodResources wr;
+  wr.id = gbuffer.id;
+  wr.depth = gbuffer.depth;
+  wr.samples = context.surface_samples;
+  wr.camera = context.camera;
+  const Handle<SeenWood> seen = add_seen_wood_pass(graph, wr, context.branch_cluster, lines.detail);
+  Handle<StrokeDrawing> leaves;
+  Handle<LeafLayer> layer;
+  if (lines.foliage.on && context.leaf_pieces.valid()) {
+    LeafResources lr;
+    lr.pieces = context.leaf_pieces;
+    lr.color = gbuffer.color;
+    lr.depth = gbuffer.depth;
+    lr.wood = seen;
+    lr.camera = context.camera;
+    lr.units_per_px = units_per_px(context.camera, context.scene_sphere);
+    lr.samples = context.surface_samples;
+    lr.light = key_light_of(context);
+    layer = add_leaf_layer_pass(graph, lr, params.leaves, lines, params.edges);
+    leaves = add_leaf_strokes_pass(graph, layer);
+  }
+  const Handle<StrokeDrawing> wood = add_wood_lines_pass(graph, seen, lines, params.edges);
+  // The leaves under the wood, the other lines over both.
+  return {over(graph, over(graph, leaves, wood, "leaves-and-wood"), strokes, "line-drawing"),
+          layer};
+}
+
+}  // namespace
+
 StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const StyleParams& params,
                       const StyleContext& context) {
-  InkLineResources r;
-  r.color = gbuffer.color;
-  r.depth = gbuffer.depth;
-  r.normal = gbuffer.normal;
-  r.id = gbuffer.id;
-  r.samples = context.surface_samples;
-  r.camera = context.camera;
-  Handle<StrokeDrawing> strokes =
-      add_ink_lines_pass(graph, r, params.edges, params.lines, context.branch_cluster);
-  if (params.pen.enabled()) {
+  const LineDrawing drawing = add_line_drawing(graph, gbuffer, params, context);
+  Handle<StrokeDrawing> strokes = drawing.strokes;
+  const bool hatch = params.pen.tone == PenTone::Hatching;
+  if (drawing.leaves.valid() && (hatch || params.lines.wood_shade)) {
+    validate_pen_params(params.pen);
+    // pen: the crown and the wood; ink: the wood's shadow side only (lines.wood_shade).
+    const Handle<StrokeDrawing> tone = add_hatch_groups_pass(
+        graph, drawing.leaves, gbuffer.normal, gbuffer.color, params.pen, params.lines.detail,
+        {.foliage = hatch, .wood = params.lines.wood_shade});
+    strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
+  } else if (params.pen.enabled()) {
     validate_pen_params(params.pen);
     ToneResources t;
     t.position = gbuffer.position;

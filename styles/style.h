@@ -14,6 +14,7 @@
 #include "core/graph/render_graph.h"
 #include "core/params.h"
 #include "npr/illumination_pass.h"
+#include "npr/leaf_pieces.h"
 #include "styles/presets.h"
 #include "styles/style_params.h"
 
@@ -43,6 +44,9 @@ struct StyleContext {
   // The scene-level "surface-samples" node (npr/surface_samples.h) the ink lines' crown
   // coverage is projected from; none = the outline follows the raster's coverage.
   SamplesHandle surface_samples{};
+  // The scene-level "leaf-pieces" node (npr/leaf_pieces.h) the ink styles' foliage primitives
+  // are projected from; none = no foliage primitives.
+  LeafPiecesHandle leaf_pieces{};
 };
 
 // What a style adds to the graph: its final image (CV_8UC4 BGRA sRGB) and, for styles made of

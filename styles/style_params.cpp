@@ -13,6 +13,7 @@ void bind_style_params(ParamSet& set, StyleParams& p) {
   bind_edge_params(set, p.edges);
   bind_ink_params(set, p.ink);
   bind_ink_line_params(set, p.lines);
+  bind_leaf_params(set, p.leaves);
   bind_pen_params(set, p.pen);
   bind_toon_params(set, p.toon);
   bind_watercolor_params(set, p.watercolor);

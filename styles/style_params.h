@@ -14,6 +14,7 @@
 #include "passes/edges.h"
 #include "passes/hatching.h"
 #include "passes/ink_lines.h"
+#include "passes/leaf_primitives.h"
 #include "passes/toon.h"
 #include "passes/watercolor.h"
 
@@ -35,6 +36,7 @@ struct StyleParams {
   EdgeParams edges;
   InkParams ink;
   InkLineParams lines;  // ink.detail and lines.*: the ink style's line hierarchy
+  LeafParams leaves;    // leaves.*: the foliage's drawing primitives (ink, pen)
   PenParams pen;        // pen.*: tone drawn with strokes (the pen preset)
   ToonParams toon;
   WatercolorParams watercolor;

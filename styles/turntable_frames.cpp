@@ -2,6 +2,7 @@
 
 #include "core/graph/render_graph.h"
 #include "npr/ao_pass.h"
+#include "npr/leaf_pieces.h"
 #include "npr/surface_samples.h"
 
 namespace sylva {
@@ -9,6 +10,7 @@ namespace sylva {
 void memoize_preprocessing(SheetScene& scene, bool quiet) {
   scene.ao_memo = std::make_shared<AoMemo>();
   scene.samples_memo = std::make_shared<SurfaceSampleMemo>();
+  scene.pieces_memo = std::make_shared<LeafPieceMemo>();
   auto memo = std::make_shared<std::shared_ptr<const VertexShading>>();
   scene.foliage = [f = scene.foliage, memo, quiet](const FoliageSettings& s) {
     IlluminationSetup setup = f(s);

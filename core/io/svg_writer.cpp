@@ -41,6 +41,13 @@ void path_data(std::ostringstream& o, const std::vector<glm::vec2>& pts, bool cl
 void write_stroke(std::ostringstream& o, const Stroke& s) {
   const std::string opacity = s.opacity < 1.0f ? " opacity=\"" + num(s.opacity) + "\"" : "";
   o << "    <path d=\"";
+  if (s.filled) {
+    path_data(o, s.points, true);
+    for (const std::vector<glm::vec2>& hole : s.holes)
+      if (!hole.empty()) path_data(o, hole, true);
+    o << "\" fill=\"currentColor\" fill-rule=\"evenodd\" stroke=\"none\"" << opacity << "/>\n";
+    return;
+  }
   if (s.constant_width() && s.points.size() > 1) {
     path_data(o, s.points, s.closed);
     o << "\" stroke-width=\"" << num(s.width) << '"' << opacity << "/>\n";

@@ -1,0 +1,125 @@
+#include "passes/seen_wood.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+#include "passes/pass_common.h"
+
+namespace sylva {
+
+namespace {
+
+cv::Mat round_kernel(double diameter) {
+  const int k = std::max(1, int(std::lround(diameter)) | 1);
+  return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
+}
+
+// The wood samples splatted at the frame's resolution: each a disc of about its spacing, the
+// nearest kept; +inf where none.
+cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size, uint32_t wood) {
+  const float inf = std::numeric_limits<float>::infinity();
+  cv::Mat z(size, CV_32FC1, cv::Scalar(inf));
+  const glm::mat4 view_proj = camera.proj * camera.view;
+  // px per scene unit at view depth d: proj[1][1] * h / 2 / d (perspective), without / d (ortho).
+  const float focal = camera.proj[1][1] * 0.5f * float(size.height);
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s.clusters[i] != wood) continue;
+    const glm::vec4 clip = view_proj * glm::vec4(s.positions[i], 1.0f);
+    if (!(clip.w > 0.0f)) continue;
+    const float d = -(camera.view * glm::vec4(s.positions[i], 1.0f)).z;
+    const float cx = (clip.x / clip.w * 0.5f + 0.5f) * float(size.width);
+    const float cy = (0.5f - clip.y / clip.w * 0.5f) * float(size.height);
+    const float r = std::clamp(0.6f * s.spacing * (camera.ortho ? focal : focal / d), 0.5f, 8.0f);
+    if (!std::isfinite(cx) || !std::isfinite(cy) || !(d > 0.0f)) continue;
+    const int x0 = std::max(0, int(std::ceil(cx - r - 0.5f))),
+              x1 = std::min(size.width - 1, int(std::floor(cx + r - 0.5f)));
+    const int y0 = std::max(0, int(std::ceil(cy - r - 0.5f))),
+              y1 = std::min(size.height - 1, int(std::floor(cy + r - 0.5f)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const float dx = float(x) + 0.5f - cx, dy = float(y) + 0.5f - cy;
+        if (dx * dx + dy * dy > r * r) continue;
+        float& t = z.at<float>(y, x);
+        t = std::min(t, d);
+      }
+  }
+  return z;
+}
+
+// The plant's depth extent in the raster (the covered pixels' nearest and farthest).
+float depth_extent(const cv::Mat& depth) {
+  float lo = std::numeric_limits<float>::max(), hi = 0.0f;
+  for (int y = 0; y < depth.rows; ++y)
+    for (int x = 0; x < depth.cols; ++x)
+      if (const float z = depth.at<float>(y, x); z > 0.0f) {
+        lo = std::min(lo, z);
+        hi = std::max(hi, z);
+      }
+  return hi > lo ? hi - lo : 0.0f;
+}
+
+// Without samples: gaps up to `gap` px that the plant fills, closed; their depth the farthest
+// wood around.
+void close_gaps(const cv::Mat& depth, double gap, SeenWood& w) {
+  cv::Mat closed, far;
+  cv::morphologyEx(w.mask, closed, cv::MORPH_CLOSE, round_kernel(gap));
+  const cv::Mat fill = closed & ~w.mask & (depth > 0.0f);
+  cv::Mat only(depth.size(), CV_32FC1, cv::Scalar(0));
+  depth.copyTo(only, w.mask);
+  cv::dilate(only, far, round_kernel(gap + 2.0));
+  far.copyTo(w.depth, fill);
+  w.mask |= fill;
+}
+
+}  // namespace
+
+SeenWood seen_wood(const WoodImages& in, uint32_t wood, double detail) {
+  SeenWood w;
+  w.depth = in.depth;
+  if (wood == 0 || in.id.empty()) return w;
+  expect_image(in.depth, CV_32FC1, {}, "depth");
+  expect_image(in.id, CV_32SC1, in.depth.size(), "id");
+  w.mask = (in.id == int(wood)) & (in.depth > 0.0f);
+  w.depth = in.depth.clone();
+  w.cover = kWoodCover * depth_extent(in.depth);
+  if (!in.samples || in.samples->clusters.size() != in.samples->size()) {
+    close_gaps(in.depth, std::max(2.0, 0.3 * detail * reference_scale(in.depth.size())), w);
+    return w;
+  }
+  const cv::Mat z = splat_wood(*in.samples, in.camera, in.depth.size(), wood);
+  const float cover = w.cover;
+  for_bands(in.depth.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < in.depth.cols; ++x) {
+        const float shown = in.depth.at<float>(y, x), under = z.at<float>(y, x);
+        if (w.mask.at<uint8_t>(y, x) || !(shown > 0.0f) || !std::isfinite(under)) continue;
+        if (shown < under - cover) continue;  // foliage clearly in front
+        w.mask.at<uint8_t>(y, x) = 255;
+        w.depth.at<float>(y, x) = under;
+      }
+  });
+  return w;
+}
+
+Handle<SeenWood> add_seen_wood_pass(RenderGraph& g, const WoodResources& in, uint32_t wood,
+                                    double detail) {
+  SYLVA_CHECK(in.id.valid() && in.depth.valid(), "seen wood needs the id and depth resources");
+  std::vector<ResourceRef> reads = {in.id, in.depth};
+  if (in.samples.valid()) reads.push_back(in.samples);
+  const auto out = g.resource<SeenWood>("seen-wood");
+  g.add_pass("seen-wood", reads, {out}, [=](PassContext& ctx) {
+    WoodImages images;
+    images.id = ctx.read<cv::Mat>(in.id);
+    images.depth = ctx.read<cv::Mat>(in.depth);
+    if (in.samples.valid())
+      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+    images.camera = in.camera;
+    ctx.write(out, seen_wood(images, wood, detail));
+  });
+  return out;
+}
+
+}  // namespace sylva

@@ -1,0 +1,76 @@
+#include "passes/tone_rank.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "passes/pass_common.h"
+
+namespace sylva {
+
+cv::Mat tone_darkness(const cv::Mat& color) {
+  expect_image(color, CV_8UC4, {}, "color");
+  cv::Mat dark(color.size(), CV_32FC1, cv::Scalar(0));
+  for_bands(color.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < color.cols; ++x) {
+        const cv::Vec4b c = color.at<cv::Vec4b>(y, x);
+        if (c[3] < 128) continue;
+        // Rec. 709 luma of the sRGB-encoded values: the tone as the eye reads it.
+        const float luma = (0.0722f * c[0] + 0.7152f * c[1] + 0.2126f * c[2]) / 255.0f;
+        dark.at<float>(y, x) = std::clamp(1.0f - luma, 0.0f, 1.0f);
+      }
+  });
+  return dark;
+}
+
+ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma) {
+  cv::Mat dark = tone_darkness(color), cover, alpha;
+  cv::extractChannel(color, alpha, 3);
+  cv::Mat(alpha >= 128).convertTo(cover, CV_32F, 1.0 / 255.0);
+  if (size != color.size()) {
+    cv::resize(dark, dark, size, 0, 0, cv::INTER_AREA);
+    cv::resize(cover, cover, size, 0, 0, cv::INTER_AREA);
+  }
+  ToneRank t;
+  t.plant = cover >= 0.5f;
+  // The plant's darkness only: divide out the paper's share of each pixel and of the blur.
+  cv::Mat weight;
+  cv::GaussianBlur(dark, t.dark, {0, 0}, std::max(0.5, sigma));
+  cv::GaussianBlur(cover, weight, {0, 0}, std::max(0.5, sigma));
+  cv::divide(t.dark, cv::max(weight, 1e-6f), t.dark);
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x)
+      if (t.plant.at<uint8_t>(y, x)) t.sorted.push_back(t.dark.at<float>(y, x));
+  if (t.sorted.empty()) return {};
+  std::sort(t.sorted.begin(), t.sorted.end());
+  t.rank = cv::Mat(size, CV_32FC1, cv::Scalar(0));
+  for_bands(size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < size.width; ++x)
+        if (t.plant.at<uint8_t>(y, x)) t.rank.at<float>(y, x) = t.rank_of(t.dark.at<float>(y, x));
+  });
+  return t;
+}
+
+float ToneRank::rank_of(float v) const {
+  if (sorted.empty()) return 0.0f;
+  // Mid-rank of v among the values: ties share the middle of their run.
+  const auto lo = std::lower_bound(sorted.begin(), sorted.end(), v);
+  const auto hi = std::upper_bound(lo, sorted.end(), v);
+  return float((double(lo - sorted.begin()) + 0.5 * double(hi - lo)) / double(sorted.size()));
+}
+
+float ToneRank::dark_near(cv::Point2f at) const {
+  if (dark.empty()) return 0.0f;
+  const int x = std::clamp(int(std::floor(at.x)), 0, dark.cols - 1),
+            y = std::clamp(int(std::floor(at.y)), 0, dark.rows - 1);
+  return dark.at<float>(y, x);
+}
+
+float ToneRank::rank_near(cv::Point2f at) const {
+  return rank_of(dark_near(at));
+}
+
+}  // namespace sylva
