@@ -40,6 +40,7 @@ bool is_plugin_format(const unsigned char* b, size_t size) {
 
 struct Loaded {
   const CodecsApi* api = nullptr;
+  std::string path;   // where it was loaded from
   std::string error;  // why it did not load, when api is null
 };
 
@@ -75,6 +76,7 @@ Loaded load() {
     const CodecsApi* api = entry ? entry() : nullptr;
     if (api && api->version == kCodecsApiVersion) {
       out.api = api;
+      out.path = path;
       return out;
     }
     tried += "; " + path + ": " +
@@ -87,14 +89,25 @@ Loaded load() {
   return out;
 }
 
+// The plugin, loaded on the first call (thread-safe).
+const Loaded& loaded() {
+  static std::once_flag once;
+  static Loaded l;
+  std::call_once(once, [] { l = load(); });
+  return l;
+}
+
 }  // namespace
 
 const CodecsApi& codecs() {
-  static std::once_flag once;
-  static Loaded loaded;
-  std::call_once(once, [] { loaded = load(); });
-  if (!loaded.api) throw std::runtime_error(loaded.error);
-  return *loaded.api;
+  const Loaded& l = loaded();
+  if (!l.api) throw std::runtime_error(l.error);
+  return *l.api;
+}
+
+const std::string& codecs_path() {
+  codecs();
+  return loaded().path;
 }
 
 cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report,
