@@ -14,8 +14,9 @@ namespace sylva {
 
 // The plugin's entry points, loaded once (thread-safe). The plugin is looked for at
 // $SYLVA_CODECS, next to the executable (dirname of /proc/self/exe), where an install puts it
-// relative to the executable (../lib/sylva/), then, for programs in the build tree, where this
-// build put it. Throws std::runtime_error naming every path tried and dlerror() when none loads.
+// relative to the executable (../lib/x86_64-linux-gnu/sylva/), then, for programs in the build
+// tree, where this build put it. Throws std::runtime_error naming every path tried and dlerror()
+// when none loads.
 const CodecsApi& codecs();
 
 // The file codecs() loaded the plugin from; throws as codecs() does.
