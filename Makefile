@@ -21,7 +21,7 @@ setup-test:
 $(BUILD)/build.ninja:
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 
-# The program and its plugin only: 91 of the build's 308 steps (78 of its 251 compilations).
+# The program and its plugin only: 43 of the build's 260 steps.
 sylva: setup $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS) --target sylva sylva_codecs
 
