@@ -20,7 +20,7 @@ packages=(
 test_packages=(
   clang-format clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev ffmpeg nodejs
   librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools python3-openimageio python3-numpy
-  slurm-wlm munge lintian
+  slurm-wlm munge lintian man-db
 )
 test=0
 if [ "${1:-}" = "--test" ]; then
