@@ -1,31 +1,61 @@
-# Sylva: `make demo` renders the demo gallery into out/, `make test` runs every test.
+# Sylva. `make demo` builds only the sylva program and its codecs plugin and renders the demo
+# gallery into out/; `make test` builds the rest (the tests) in the same build and runs them.
 # Both install missing Debian packages first (scripts/setup.sh) and build in Release.
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+PREFIX ?= /usr/local
 
-.PHONY: all setup build test demo sanitize fuzz perf golden docs format clean
+.PHONY: all setup setup-test sylva build test demo gallery installable install package sanitize \
+	fuzz perf golden docs format clean
 
 all: build
 
 setup:
 	@scripts/setup.sh
 
+setup-test:
+	@scripts/setup.sh --test
+
 $(BUILD)/build.ninja:
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
 
-build: setup $(BUILD)/build.ninja
+# The program and its plugin only: 43 of the build's 260 steps.
+sylva: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS) --target sylva sylva_codecs
+
+build: setup-test $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 
 test: build
 	cd $(BUILD) && ctest -LE perf --output-on-failure -j $(JOBS) --timeout 900
 
+demo: sylva
+	@scripts/demo.sh $(BUILD)/cli/sylva out
+
+# Rewrites docs/gallery.png, the README's picture (every built-in style on the shared ash).
+gallery: sylva
+	@scripts/gallery.sh $(BUILD)/cli/sylva docs/gallery.png
+
+# What an install holds: sylva, its plugin, the man page (not the tests).
+installable: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS) --target sylva_installable
+
+# Installs sylva, its plugin, the presets and the man page under PREFIX (cmake/install.cmake).
+install: installable
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# The .deb, sylva_VERSION_ARCH.deb in $(BUILD)/ (cpack; Depends from dpkg-shlibdeps).
+package: installable
+	cd $(BUILD) && cpack -G DEB
+
 # Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (no benchmarks), built with
 # clang at -O1 with line tables only: half the build time of GCC's -O2 -g, the same checks.
-sanitize: setup
+# One object per source (no unity batches), so CI also proves each file compiles alone.
+sanitize: setup-test
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSYLVA_SANITIZE=ON \
-	  -DSYLVA_BUILD_PERF=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	  -DSYLVA_BUILD_PERF=OFF -DSYLVA_UNITY_BUILD=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
 	  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only" \
 	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only"
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
@@ -34,11 +64,8 @@ sanitize: setup
 	  ctest -L unit -LE perf --output-on-failure -j $(JOBS) --timeout 1800
 
 # The libFuzzer harnesses (clang, build-fuzz/), FUZZ_SECONDS each (default 60): tests/fuzz/.
-fuzz: setup
+fuzz: setup-test
 	@scripts/fuzz.sh
-
-demo: build
-	@scripts/demo.sh $(BUILD)/cli/sylva out
 
 perf: build
 	cd $(BUILD) && ctest -L perf --output-on-failure -V
@@ -49,10 +76,11 @@ golden: build
 	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/cli/test_cli --gtest_filter='Golden*'
 	SYLVA_UPDATE_GOLDEN=1 $(BUILD)/tests/styles/test_styles --gtest_filter='*PassGolden*'
 
-# Rewrites the README's generated tables (options and style parameters) from their
-# declarations; the docs.readme test fails when they are stale.
-docs: build
-	$(BUILD)/cli/sylva_docs README.md
+# Rewrites the generated tables in README.md and docs/*.md (options and style parameters) from
+# their declarations; the docs.tables test fails when one is stale.
+docs: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS) --target sylva_docs
+	$(BUILD)/cli/sylva_docs README.md docs
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

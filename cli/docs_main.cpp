@@ -1,13 +1,19 @@
-// sylva_docs README.md [--check]: rewrites the README's generated tables (cli/docs.h) from the
-// program's option declarations and the style parameters' specs (`make docs`). With --check it
-// writes nothing and exits 1, naming the first stale line, when the README differs from what
-// it would write (the docs.readme test). Bad input: one line, exit 2.
+// sylva_docs [--check] PATH...: rewrites the generated tables (cli/docs.h) of the markdown files
+// given, a folder standing for its *.md files, from the program's option declarations and the
+// style parameters' specs (`make docs`: README.md docs). With --check it writes nothing and exits
+// 1, naming the first stale file and line, when a file differs from what it would write (the
+// docs.tables test). sylva_docs --man OUT writes the man page sylva(1) (cli/man_page.h).
+// Bad input: one line, exit 2.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "cli/app.h"
 #include "cli/docs.h"
+#include "cli/man_page.h"
+#include "cli/version.h"
 #include "core/error.h"
 #include "core/io/atomic_file.h"
 
@@ -37,28 +43,57 @@ std::string first_difference(const std::string& a, const std::string& b) {
   }
 }
 
+// The files of `paths`: a folder's *.md in name order, a file as it is.
+std::vector<sylva::cli::DocFile> read_docs(const std::vector<std::string>& paths) {
+  std::vector<sylva::cli::DocFile> files;
+  for (const std::string& path : paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(path, ec)) {
+      files.push_back({path, read_text(path)});
+      continue;
+    }
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(path, ec))
+      if (entry.path().extension() == ".md") names.push_back(entry.path().string());
+    if (ec) throw sylva::InputError(path, "cannot list it: " + ec.message());
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names)
+      files.push_back({name, read_text(name)});
+  }
+  return files;
+}
+
+int usage() {
+  std::fprintf(stderr, "usage: sylva_docs [--check] FILE.md|FOLDER... | sylva_docs --man OUT\n");
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3 || (argc == 3 && std::string(argv[2]) != "--check")) {
-    std::fprintf(stderr, "usage: sylva_docs README.md [--check]\n");
-    return 2;
-  }
-  const std::string path = argv[1];
-  const bool check = argc == 3;
+  std::vector<std::string> args(argv + 1, argv + argc);
   try {
     CLI::App app;
     sylva::cli::add_commands(app);
-    const std::string old = read_text(path);
-    const std::string generated = sylva::cli::generate_readme(old, app);
-    if (check) {
-      const std::string diff = first_difference(old, generated);
-      if (diff.empty()) return 0;
-      std::fprintf(stderr, "%s: the generated tables are stale (run make docs); %s\n", path.c_str(),
-                   diff.c_str());
-      return 1;
+    if (!args.empty() && args[0] == "--man") {
+      if (args.size() != 2) return usage();
+      sylva::write_file_atomic(args[1], sylva::cli::man_page(app, sylva::cli::version_line()));
+      return 0;
     }
-    if (generated != old) sylva::write_file_atomic(path, generated);
+    const bool check = !args.empty() && args[0] == "--check";
+    if (check) args.erase(args.begin());
+    if (args.empty()) return usage();
+    const std::vector<sylva::cli::DocFile> old = read_docs(args);
+    const std::vector<sylva::cli::DocFile> generated = sylva::cli::generate_docs(old, app);
+    for (size_t i = 0; i < old.size(); ++i) {
+      if (generated[i].text == old[i].text) continue;
+      if (check) {
+        std::fprintf(stderr, "%s: the generated tables are stale (run make docs); %s\n",
+                     old[i].path.c_str(), first_difference(old[i].text, generated[i].text).c_str());
+        return 1;
+      }
+      sylva::write_file_atomic(old[i].path, generated[i].text);
+    }
   } catch (const sylva::InputError& e) {
     std::fprintf(stderr, "sylva_docs: error: %s\n", e.what());
     return 2;

@@ -40,20 +40,32 @@ bool is_plugin_format(const unsigned char* b, size_t size) {
 
 struct Loaded {
   const CodecsApi* api = nullptr;
+  std::string path;   // where it was loaded from
   std::string error;  // why it did not load, when api is null
 };
 
 // Where to look, in order: $SYLVA_CODECS (an explicit choice wins), beside the executable,
-// then SYLVA_CODECS_BUILD_PATH, the module's path in the build tree compiled in by
-// core/CMakeLists.txt, so the tests find it from their own folders.
+// SYLVA_CODECS_INSTALL_PATH relative to the executable's folder (where `cmake --install` and
+// the .deb put it, e.g. ../lib/x86_64-linux-gnu/sylva/), then, for programs inside the build tree
+// only (the tests, build/cli/sylva), SYLVA_CODECS_BUILD_PATH, the module's path there; all compiled
+// in by core/CMakeLists.txt. An installed or copied sylva never looks into the tree it was built
+// in.
 std::vector<std::string> candidates() {
   std::vector<std::string> paths;
   if (const char* env = std::getenv("SYLVA_CODECS"); env && *env) paths.push_back(env);
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) paths.push_back((exe.parent_path() / kPluginName).string());
-#ifdef SYLVA_CODECS_BUILD_PATH
-  if (std::find(paths.begin(), paths.end(), SYLVA_CODECS_BUILD_PATH) == paths.end())
+  if (ec) return paths;
+  paths.push_back((exe.parent_path() / kPluginName).string());
+#ifdef SYLVA_CODECS_INSTALL_PATH
+  paths.push_back((exe.parent_path() / SYLVA_CODECS_INSTALL_PATH).lexically_normal().string());
+#endif
+#if defined(SYLVA_CODECS_BUILD_PATH) && defined(SYLVA_BUILD_DIR)
+  // /proc/self/exe has no symbolic links; the build folder's path may.
+  const std::string build_dir =
+      std::filesystem::weakly_canonical(SYLVA_BUILD_DIR, ec).string() + "/";
+  if (!ec && exe.string().starts_with(build_dir) &&
+      std::find(paths.begin(), paths.end(), SYLVA_CODECS_BUILD_PATH) == paths.end())
     paths.push_back(SYLVA_CODECS_BUILD_PATH);
 #endif
   return paths;
@@ -75,6 +87,7 @@ Loaded load() {
     const CodecsApi* api = entry ? entry() : nullptr;
     if (api && api->version == kCodecsApiVersion) {
       out.api = api;
+      out.path = path;
       return out;
     }
     tried += "; " + path + ": " +
@@ -87,14 +100,25 @@ Loaded load() {
   return out;
 }
 
+// The plugin, loaded on the first call (thread-safe).
+const Loaded& loaded() {
+  static std::once_flag once;
+  static Loaded l;
+  std::call_once(once, [] { l = load(); });
+  return l;
+}
+
 }  // namespace
 
 const CodecsApi& codecs() {
-  static std::once_flag once;
-  static Loaded loaded;
-  std::call_once(once, [] { loaded = load(); });
-  if (!loaded.api) throw std::runtime_error(loaded.error);
-  return *loaded.api;
+  const Loaded& l = loaded();
+  if (!l.api) throw std::runtime_error(l.error);
+  return *l.api;
+}
+
+const std::string& codecs_path() {
+  codecs();
+  return loaded().path;
 }
 
 cv::Mat decode_png_or_jpeg(const unsigned char* bytes, size_t size, DecodeReport* report,

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "core/io/codecs_api.h"
 #include "core/io/decode_report.h"
@@ -12,9 +13,14 @@
 namespace sylva {
 
 // The plugin's entry points, loaded once (thread-safe). The plugin is looked for at
-// $SYLVA_CODECS, next to the executable (dirname of /proc/self/exe), then where this build put it.
-// Throws std::runtime_error naming every path tried and dlerror() when none loads.
+// $SYLVA_CODECS, next to the executable (dirname of /proc/self/exe), where an install puts it
+// relative to the executable (../lib/x86_64-linux-gnu/sylva/), then, for programs in the build
+// tree, where this build put it. Throws std::runtime_error naming every path tried and dlerror()
+// when none loads.
 const CodecsApi& codecs();
+
+// The file codecs() loaded the plugin from; throws as codecs() does.
+const std::string& codecs_path();
 
 // cv::imdecode(bytes, cv::IMREAD_UNCHANGED): PNG by libpng and JPEG by libjpeg in process (their
 // messages go to `report`, never to stderr); TIFF, BMP, WebP, PNM, OpenEXR and Radiance HDR,

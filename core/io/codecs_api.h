@@ -14,7 +14,7 @@
 namespace sylva {
 
 // Bumped whenever CodecsApi changes; the loader refuses a plugin built for another version.
-inline constexpr int kCodecsApiVersion = 4;
+inline constexpr int kCodecsApiVersion = 5;
 
 // The name of the one symbol the plugin exports: `const CodecsApi* sylva_codecs_api()`.
 inline constexpr const char* kCodecsApiSymbol = "sylva_codecs_api";
@@ -38,6 +38,9 @@ struct CodecsApi {
   // without the context's address), and forgets them: the plugin routes FFmpeg's log here
   // instead of stderr, so they reach the user inside Sylva's own error or warning line.
   std::string (*take_log)();
+  // The libraries behind the plugin and their versions ("OpenCV 4.6.0 imgcodecs and videoio,
+  // FFmpeg 5.1.4"), for `sylva --version --verbose`.
+  std::string (*versions)();
 };
 
 }  // namespace sylva

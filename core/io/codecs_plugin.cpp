@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "core/io/codecs_api.h"
 
 extern "C" {
+#include <libavutil/avutil.h>
 #include <libavutil/log.h>
 }
 
@@ -151,6 +153,11 @@ int video_frames(const std::string& path) {
   return static_cast<int>(capture.get(cv::CAP_PROP_FRAME_COUNT));
 }
 
+// What the plugin loaded, for `sylva --version --verbose`.
+std::string versions() {
+  return "OpenCV " + cv::getVersionString() + " imgcodecs and videoio, FFmpeg " + av_version_info();
+}
+
 constexpr sylva::CodecsApi kApi = {sylva::kCodecsApiVersion,
                                    encode,
                                    decode,
@@ -158,7 +165,8 @@ constexpr sylva::CodecsApi kApi = {sylva::kCodecsApiVersion,
                                    video_write,
                                    video_close,
                                    video_frames,
-                                   take_log};
+                                   take_log,
+                                   versions};
 
 }  // namespace
 

@@ -23,10 +23,12 @@ ALLOWED = {
 
 
 def flags_of(commands, source_dir, folder):
-    """The include and define flags of the first source file compiled from `folder`."""
+    """The include and define flags of the first source file compiled from `folder` (or of a
+    unity batch of its library, SYLVA_UNITY_BUILD)."""
     prefix = os.path.join(source_dir, folder) + os.sep
+    batch = os.sep + "CMakeFiles" + os.sep + "sylva_" + folder + ".dir" + os.sep + "Unity" + os.sep
     for c in commands:
-        if c["file"].startswith(prefix) and c["file"].endswith(".cpp"):
+        if (c["file"].startswith(prefix) and c["file"].endswith(".cpp")) or batch in c["file"]:
             args = c["arguments"] if "arguments" in c else shlex.split(c["command"])
             keep, i = [args[0]], 1
             while i < len(args):
