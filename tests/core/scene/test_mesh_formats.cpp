@@ -104,6 +104,11 @@ TEST(MeshFormats, AsciiPlyAndItsErrors) {
   EXPECT_TRUE(only_mesh(s).colors.empty());  // alpha alone is not a colour
   EXPECT_EQ(error_of("word.ply", head + "0 0 0 1\n1 0 zero 1\n"),
             "line 12: expected a number, got 'zero'");
+  EXPECT_EQ(error_of("huge.ply", head + "0 0 0 1\n1 0 1e400 1\n1 1 0 1\n0 1 0 1\n3 0 1 2\n"
+                                        "3 0 2 3\n"),
+            "vertex 2 has a NaN or infinite position");  // beyond a double: not 0
+  EXPECT_EQ(error_of("sign.ply", head + "0 0 0 1\n1 0 +-1 1\n"),
+            "line 12: expected a number, got '+-1'");
   EXPECT_EQ(error_of("short.ply", head + "0 0 0 1\n"),
             "line 11: the file ends where a number was expected");
   EXPECT_EQ(error_of("list.ply", head + "0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n-3 0 1 2\n"),
