@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config clang-format clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
   libosmesa6-dev libopencv-dev libavutil-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
-  libopenmesh-dev libtinyobjloader-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
+  libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
   libpng-dev libjpeg-dev libgif-dev libcairo2-dev libgtest-dev libgmock-dev libbenchmark-dev ffmpeg nodejs
   libopenexr-dev libmurmurhash-dev librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools
   python3-openimageio python3-numpy slurm-wlm munge
