@@ -45,8 +45,10 @@ float real(const std::string& s, size_t line) {
 size_t index(const std::string& s, size_t count, size_t line) {
   const bool minus = !s.empty() && s[0] == '-';
   const std::string d = minus ? s.substr(1) : s;
-  if (d.empty() || d.size() > 12 || !std::all_of(d.begin(), d.end(), digit)) throw Fault{line};
-  const size_t v = size_t(std::stoull(d));
+  if (d.empty() || !std::all_of(d.begin(), d.end(), digit)) throw Fault{line};
+  const std::string significant = d.substr(std::min(d.find_first_not_of('0'), d.size()));
+  if (significant.empty() || significant.size() > 12) throw Fault{line};  // 0, or beyond count
+  const size_t v = size_t(std::stoull(significant));
   if (v == 0 || v > count) throw Fault{line};
   return minus ? count - v : v - 1;
 }

@@ -93,6 +93,10 @@ TEST(ObjStrict, RelativeIndicesNameWhatCameBefore) {
             "'1'");
   const MeshData m = read(kTriangle + "f -3 -2 -1\nv 1 1 0\nf -3 -1 -2\n");
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+  // Leading zeros are a whole number's (the reference reader's length check once forgot them:
+  // found by fuzz_obj, tests/fuzz/regressions/obj/index-with-leading-zeros).
+  const MeshData zeros = read(kTriangle + "f 0000000000000000000000000000003 -0002 01\n");
+  EXPECT_EQ(zeros.indices, (std::vector<uint32_t>{2, 1, 0}));
 }
 
 TEST(ObjStrict, FacesNeedThreeCorners) {
