@@ -16,7 +16,7 @@ namespace sylva::cli {
 
 void add_scene_options(CLI::App& cmd, SceneOptions& o) {
   cmd.add_option("scene", o.path,
-                 "Scene file: .glb, .gltf (tinygltf), .obj (tinyobjloader), .ply (ASCII and "
+                 "Scene file: .glb, .gltf (tinygltf), .obj (v, vt, vn, f), .ply (ASCII and "
                  "binary), .off (ASCII) or .stl (ASCII and binary)")
       ->required()
       ->group(kSceneGroup);

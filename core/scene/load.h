@@ -1,5 +1,5 @@
 // Loading a scene file into the scene model: dispatch on the extension (.gltf/.glb via
-// tinygltf, .obj/.ply/.off/.stl via OpenMesh), validate (NaN/Inf, index ranges), drop
+// tinygltf, .obj/.ply/.off/.stl by Sylva's readers), validate (NaN/Inf, index ranges), drop
 // zero-area and degenerate triangles (counted in the report), classify roles (foliage.h),
 // and assign primitive ids (components.h). Cluster ids are set to 1 here and assigned
 // properly by npr/leaf_clusters.h. Bad input throws InputError naming the file.

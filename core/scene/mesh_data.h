@@ -2,7 +2,8 @@
 // mesh_read.cpp) produce: one vertex per position, optional per-vertex normals, texture
 // coordinates and colours, and triangles. Polygons are fan-triangulated around their first
 // vertex (leaf cards and quads are convex). A face with fewer than three vertices or a vertex
-// index out of range is skipped and counted; mesh_read turns the count into one warning.
+// index out of range is skipped and counted; mesh_read turns the count into one warning (the
+// OBJ reader refuses such a face instead: its indices name what was declared before them).
 #pragma once
 
 #include <glm/glm.hpp>

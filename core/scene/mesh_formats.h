@@ -10,9 +10,10 @@
 
 namespace sylva {
 
-// Wavefront OBJ through tinyobjloader: v (with optional r g b), vt, vn, f; other statements
-// (materials, groups, lines, points) are ignored.
-MeshData read_obj(const std::string& text, const std::string& path);
+// Wavefront OBJ, strictly (obj_read.cpp): v (with optional w, or r g b), vt, vn, f; other
+// statements (materials, groups, lines, points) are ignored. A malformed number or an index
+// naming nothing declared before its line is an error.
+MeshData read_obj(std::string_view text, const std::string& path);
 // Object File Format, ASCII: [ST][C][N]OFF headers, vertex colours as 0-1 floats or 0-255.
 MeshData read_off(std::string_view text, const std::string& path);
 // Stanford PLY, ASCII and binary (both byte orders): x y z, nx ny nz, u v (or s t), red green

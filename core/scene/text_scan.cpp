@@ -1,6 +1,9 @@
 #include "core/scene/text_scan.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
 
 #include "core/error.h"
 
@@ -9,6 +12,32 @@ namespace {
 
 bool blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
+
+// Whether a decimal number that from_chars found outside a double's range is too large rather
+// than too small: the power of ten of its first significant digit is positive (it is at least
+// 308 or at most -324). `w` is what from_chars read: sign, digits, point, exponent.
+bool beyond_max(std::string_view w) {
+  size_t i = !w.empty() && (w[0] == '-' || w[0] == '+') ? 1 : 0;
+  int64_t whole = 0, zeros = 0;  // significant digits before the point; zeros after it
+  bool point = false, significant = false;
+  for (; i < w.size() && w[i] != 'e' && w[i] != 'E'; ++i) {
+    if (w[i] == '.') {
+      point = true;
+    } else if (significant || w[i] != '0') {
+      significant = true;
+      whole += point ? 0 : 1;
+    } else if (point) {
+      ++zeros;
+    }
+  }
+  const bool negative = i + 1 < w.size() && w[i + 1] == '-';
+  int64_t exponent = 0;
+  for (size_t k = i + 1; k < w.size(); ++k)
+    if (w[k] >= '0' && w[k] <= '9')
+      exponent = std::min<int64_t>(exponent * 10 + (w[k] - '0'), 1 << 30);
+  const int64_t power = whole > 0 ? whole - 1 : -(zeros + 1);
+  return power + (negative ? -exponent : exponent) > 0;
 }
 
 }  // namespace
@@ -69,14 +98,25 @@ double TextScan::number() {
 }
 
 double TextScan::number(std::string_view w) const {
-  std::string_view digits = w;
-  if (!digits.empty() && digits[0] == '+') digits.remove_prefix(1);
+  const bool plus = !w.empty() && w[0] == '+';  // from_chars takes no '+'
+  const std::string_view digits = w.substr(plus ? 1 : 0);
   double v = 0.0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-  if (digits.empty() || end != digits.data() + digits.size() ||
+  if (digits.empty() || (plus && digits[0] == '-') || end != digits.data() + digits.size() ||
       (ec != std::errc() && ec != std::errc::result_out_of_range))
     fail("expected a number, got " + quote(w));
+  if (ec == std::errc::result_out_of_range) {  // from_chars leaves v as it was
+    v = beyond_max(digits) ? std::numeric_limits<double>::infinity() : 0.0;
+    if (digits[0] == '-') v = -v;
+  }
   return v;
+}
+
+float TextScan::finite_float(std::string_view w) const {
+  const float f = float(number(w));
+  if (!std::isfinite(f))
+    fail("expected a finite number (magnitude at most 3.4e38), got " + quote(w));
+  return f;
 }
 
 uint64_t TextScan::count(std::string_view w, const char* what, uint64_t max) const {

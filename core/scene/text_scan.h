@@ -25,8 +25,13 @@ class TextScan {
   // The words of the next line that has any (comments dropped), or false at the end.
   bool line(std::vector<std::string_view>& words);
   // The next word as a number; the end of the text or a word that is not one is an error.
+  // A number is decimal (an optional sign, digits with an optional point, an optional
+  // exponent), "inf" or "nan" (callers that need finite values check them); one beyond a
+  // double's range is +-inf, one below it +-0.
   double number();
   double number(std::string_view w) const;
+  // A number as a float that is finite (no inf, nan or magnitude over 3.4e38); else an error.
+  float finite_float(std::string_view w) const;
   // A whole number in [0, max], named `what` in the error.
   uint64_t count(std::string_view w, const char* what, uint64_t max) const;
 

@@ -4,13 +4,22 @@
 // right lengths, valid material and texture references, textures of width * height * 4 bytes;
 // plants and instances that pass validate_instances with an id layout that fits 32 bits, and
 // cameras with finite, usable parameters.
+// For the mesh formats, what is accepted is what the text says: each loaded mesh written as OBJ
+// text (tests/obj_text.h) reads back as the same mesh, and an OBJ input of at most 16 KiB is
+// accepted or refused (on the same line) as the independent reference reader
+// (tests/obj_reference.h) does, with the same mesh when accepted.
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/scene/gltf_nodes.h"
 #include "core/scene/instances.h"
 #include "core/scene/load.h"
+#include "core/scene/mesh_formats.h"
 #include "tests/fuzz/fuzz_support.h"
+#include "tests/obj_reference.h"
+#include "tests/obj_text.h"
 
 #ifndef SYLVA_FUZZ_EXT
 #error "SYLVA_FUZZ_EXT (the file extension, e.g. \".glb\") must be defined"
@@ -19,6 +28,10 @@
 namespace {
 
 using sylva::fuzz::fail;
+
+constexpr std::string_view kExt = SYLVA_FUZZ_EXT;
+constexpr bool kMeshFormat = kExt == ".obj" || kExt == ".ply" || kExt == ".off" || kExt == ".stl";
+constexpr size_t kReferenceBytes = 16384;
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -86,10 +99,63 @@ void check_scene(const sylva::Scene& scene) {
       fail("texture " + t.name + ": size");
 }
 
+// The loaded mesh as OBJ text, read again: the same positions, triangles and colours (OBJ has
+// no alpha), and the same uvs and normals on every vertex a triangle uses (OBJ gives a vertex
+// only what a face corner names).
+void check_round_trip(const sylva::Mesh& m) {
+  sylva::MeshData d;
+  try {
+    d = sylva::read_obj(sylva::test::obj_text(m), "round-trip.obj");
+  } catch (const sylva::InputError& e) {
+    fail(std::string("mesh " + m.name + " written as OBJ is refused: ") + e.what());
+  }
+  if (d.positions != m.positions || d.indices != m.indices)
+    fail("mesh " + m.name + " written as OBJ reads back other positions or triangles");
+  if (d.colors.size() != m.colors.size()) fail("mesh " + m.name + ": colours lost as OBJ");
+  for (size_t i = 0; i < m.colors.size(); ++i)
+    if (glm::vec3(d.colors[i]) != glm::vec3(m.colors[i]))
+      fail("mesh " + m.name + ": colour " + std::to_string(i) + " changed as OBJ");
+  if (d.uvs.size() != m.uvs.size() || d.normals.size() != m.normals.size())
+    fail("mesh " + m.name + ": uvs or normals lost as OBJ");
+  for (uint32_t v : m.indices)
+    if ((!m.uvs.empty() && d.uvs[v] != m.uvs[v]) || d.normals[v] != m.normals[v])
+      fail("mesh " + m.name + ": vertex " + std::to_string(v) + "'s uv or normal changed as OBJ");
+}
+
+// The reader and the reference reader agree: both refuse the text on the same line, or both
+// read the same mesh.
+void check_against_reference(std::string_view text) {
+  std::optional<sylva::MeshData> got;
+  std::string error;
+  try {
+    got = sylva::read_obj(text, "in.obj");
+  } catch (const sylva::InputError& e) {
+    error = e.reason();
+  }
+  const sylva::test::ObjReference ref = sylva::test::read_obj_reference(text);
+  const std::string line = "line " + std::to_string(ref.error_line) + ":";
+  if (got && !ref.ok) fail("the reader accepts what the reference refuses at " + line);
+  if (!got && ref.ok) fail("the reader refuses what the reference accepts: " + error);
+  if (!got && error.compare(0, line.size(), line) != 0)
+    fail("the reference refuses at " + line + " the reader says: " + error);
+  if (got && (got->positions != ref.mesh.positions || got->indices != ref.mesh.indices ||
+              got->uvs != ref.mesh.uvs || got->normals != ref.mesh.normals ||
+              got->colors != ref.mesh.colors))
+    fail("the reader and the reference read different meshes");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = sylva::fuzz::write_input(data, size, std::string("in") + SYLVA_FUZZ_EXT);
-  sylva::fuzz::expect_input_error([&] { check_scene(sylva::load_scene(path)); });
+  sylva::fuzz::expect_input_error([&] {
+    const sylva::Scene scene = sylva::load_scene(path);
+    check_scene(scene);
+    if (kMeshFormat)
+      for (const sylva::Mesh& m : scene.meshes)
+        check_round_trip(m);
+  });
+  if (kExt == ".obj" && size <= kReferenceBytes)
+    check_against_reference(std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }

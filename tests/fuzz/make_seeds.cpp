@@ -2,9 +2,9 @@
 // small slices of the shared trees (the first triangles of their first meshes, textures cut
 // to 16 px) and of the sample plants as .glb, .gltf (buffers as data: URIs), .obj, .ply
 // (ASCII and binary), .off and .stl (ASCII and binary); each shared tree's own JSON chunk
-// with the start of its binary chunk; small PNG and JPEG textures cut from the trees'
-// textures; the built-in presets; `--set` lines of every parameter's default; option strings;
-// a blob keyframe; a foliage cache file of the cache harness's scene.
+// with the start of its binary chunk; hand-written OBJ variants; small PNG and JPEG textures cut
+// from the trees' textures; the built-in presets; `--set` lines of every parameter's default;
+// option strings; a blob keyframe; a foliage cache file of the cache harness's scene.
 //
 //   make_seeds OUT SHARED_ASSETS_DIR
 #if defined(__GNUC__) && !defined(__clang__)  // GCC only; clang has no such warning
@@ -234,6 +234,18 @@ void write_cache_seeds(const fs::path& out) {
 
 }  // namespace
 
+// Hand-written OBJ text with what OpenMesh's writer never writes: `v x y z w`, vertex colours,
+// one- and three-number `vt`, relative indices, polygons, ignored statements, comments, CRLF.
+void write_obj_seeds(const fs::path& out) {
+  put(out / "obj", "variants.obj",
+      "# variants\nmtllib a.mtl\no plant\ng leaf\ns 1\nusemtl green\nv 0 0 0 1\nv 1 0 0 1\n"
+      "v 1 1 0 0.5\nv 0 1 0 1\nv .5 1.5 -0.25e-1 1\nvt 0\nvt 1 0 0\nvt 1 1\nvn 0 0 1\n"
+      "vn 0 0 -1\nf 1/1/1 2/2/1 3/3/1 4/1/1 5/2/1\nf -1//-2 -3//-2 -4//-2\nl 1 2\np 3\n");
+  put(out / "obj", "colours.obj",
+      "v 0 0 0 1 0 0\r\nv 1 0 0 0 1 0\r\nv 0 1 0 0 0 1\r\nv 1 1 0 0.5 0.5 0.5\r\n"
+      "f 1 2 3\r\nf 2 4 3 # a quad's second half\r\n");
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::cerr << "usage: make_seeds OUT SHARED_ASSETS_DIR\n";
@@ -267,6 +279,7 @@ int main(int argc, char** argv) {
     }
     write_parameter_seeds(out);
     write_cache_seeds(out);
+    write_obj_seeds(out);
   } catch (const std::exception& e) {
     std::cerr << "make_seeds: " << e.what() << "\n";
     return 1;
