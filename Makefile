@@ -7,7 +7,7 @@ JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PREFIX ?= /usr/local
 
-.PHONY: all setup setup-test sylva build test demo gallery installable install package sanitize \
+.PHONY: all setup setup-test sylva build test demo gallery line-sheet installable install package sanitize \
 	fuzz perf golden docs format clean
 
 all: build
@@ -37,6 +37,10 @@ demo: sylva
 # Rewrites docs/gallery.png, the README's picture (every built-in style on the shared ash).
 gallery: sylva
 	@scripts/gallery.sh $(BUILD)/cli/sylva docs/gallery.png
+
+# Rewrites docs/line-sheet.png (standard, ink and pen on every shared tree).
+line-sheet: sylva
+	@scripts/line_sheet.sh $(BUILD)/cli/sylva docs/line-sheet.png
 
 # What an install holds: sylva, its plugin, the man page (not the tests).
 installable: setup $(BUILD)/build.ninja

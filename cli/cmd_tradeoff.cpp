@@ -65,7 +65,7 @@ void print_written(const TradeoffOutputs& out, size_t rows) {
 namespace {
 
 // The studies `--study` accepts.
-const char* const kStudies = "foliage, ao, keyframes, coherence";
+const char* const kStudies = "foliage, ao, keyframes, coherence, abstraction";
 
 // An option of one study given to another: one clear line instead of silently ignoring it.
 void reject_options(const std::vector<CLI::Option*>& options, const std::string& study) {
@@ -184,8 +184,13 @@ void run_coherence(CLI::App& cmd, TradeoffOpts& o) {
   reject_ao_options_but_view(o);
   for (const char* name : {"--every", "--degrees", "--style"})
     reject_options({cmd.get_option(name)}, o.study + " (use --styles and --step)");
-  run_coherence_study_command(o.scene, o.coherence, o.keyframes,
-                              cmd.get_option("--frames")->count() > 0, o.ao.view,
+  const bool frames = cmd.get_option("--frames")->count() > 0;
+  if (o.study == "abstraction")
+    return run_abstraction_study_command(o.scene, o.coherence, o.keyframes, frames, o.ao.view,
+                                         given_foliage_options(cmd), o.sets,
+                                         {o.out, o.plot, o.quiet});
+  reject_options({cmd.get_option("--details")}, o.study);
+  run_coherence_study_command(o.scene, o.coherence, o.keyframes, frames, o.ao.view,
                               given_foliage_options(cmd), o.sets, {o.out, o.plot, o.quiet});
 }
 
@@ -245,12 +250,14 @@ void run_foliage(const CLI::App& cmd, const TradeoffOpts& o) {
 // Checks the study and outputs, then runs the study with the options it takes (the others'
 // are rejected).
 void run_tradeoff(CLI::App& cmd, TradeoffOpts& o) {
-  if (o.study != "foliage" && o.study != "ao" && o.study != "keyframes" && o.study != "coherence")
+  if (o.study != "foliage" && o.study != "ao" && o.study != "keyframes" && o.study != "coherence" &&
+      o.study != "abstraction")
     throw InputError("--study", "unknown study '" + o.study + "' (allowed: " + kStudies + ")");
   check_output_path("--output", o.out, {".csv"});
   if (!o.plot.empty()) check_output_path("--plot", o.plot, {".png"});
-  if (o.study != "coherence") reject_options(o.coherence.options, o.study);
-  if (o.study == "coherence") return run_coherence(cmd, o);
+  if (o.study != "coherence" && o.study != "abstraction")
+    reject_options(o.coherence.options, o.study);
+  if (o.study == "coherence" || o.study == "abstraction") return run_coherence(cmd, o);
   if (o.study == "keyframes") return run_keyframes(cmd, o);
   reject_options(o.keyframes.options, o.study);
   if (o.study == "ao") {

@@ -96,12 +96,13 @@ void run_keyframe_study_command(const SceneOptions& scene, const KeyframeStudyCl
 // The options only `--study coherence` reads (besides the view options, and --frames, --axis
 // and --zoom of the keyframes study's).
 struct CoherenceStudyCliOptions {
-  std::string styles;  // empty = every built-in style
+  std::string styles;  // empty = every built-in style (abstraction: ink,pen)
   float step = 1.0f;
-  std::vector<CLI::Option*> options;  // every option above, to reject them in other studies
+  std::string details = "4,6,8,10,14,20";  // --study abstraction: the values of ink.detail
+  std::vector<CLI::Option*> options;       // every option above, to reject them in other studies
 };
 
-// Registers --styles and --step.
+// Registers --styles, --step and --details.
 void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o);
 
 // `sylva tradeoff SCENE --study coherence`: every style of --styles on --frames views --step
@@ -112,5 +113,15 @@ void run_coherence_study_command(const SceneOptions& scene, const CoherenceStudy
                                  const KeyframeStudyCliOptions& path, bool frames_given,
                                  ViewOptions& view, const std::vector<ParamAssignment>& foliage,
                                  const std::vector<std::string>& sets, const TradeoffOutputs& out);
+
+// `sylva tradeoff SCENE --study abstraction`: every style of --styles (default ink,pen) at each
+// value of --details for ink.detail: the depiction measures of its first view, its line pop over
+// --frames views (default 5) --step degrees apart and its time per frame
+// (studies/abstraction_study.h); CSV (and plot) written atomically, table printed.
+void run_abstraction_study_command(const SceneOptions& scene, const CoherenceStudyCliOptions& o,
+                                   const KeyframeStudyCliOptions& path, bool frames_given,
+                                   ViewOptions& view, const std::vector<ParamAssignment>& foliage,
+                                   const std::vector<std::string>& sets,
+                                   const TradeoffOutputs& out);
 
 }  // namespace sylva::cli

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <unordered_map>
 
 #include "core/error.h"
 
@@ -36,6 +38,113 @@ size_t StrokeDrawing::count(LineClass c) const {
 void append_strokes(StrokeDrawing& a, const StrokeDrawing& b) {
   SYLVA_CHECK(a.size == b.size, "append_strokes: drawings of different sizes");
   a.strokes.insert(a.strokes.end(), b.strokes.begin(), b.strokes.end());
+}
+
+namespace {
+
+// The ends of the open strokes, in cells of `reach` px, to find the ends near a point.
+class EndGrid {
+ public:
+  EndGrid(const std::vector<Stroke>& strokes, float reach) : m_strokes(strokes), m_reach(reach) {
+    for (size_t i = 0; i < strokes.size(); ++i)
+      if (joinable(strokes[i]))
+        for (int end = 0; end < 2; ++end)
+          m_cells[key(point(i, end))].push_back({i, end});
+  }
+  static bool joinable(const Stroke& s) { return !s.filled && !s.closed && s.points.size() >= 2; }
+  glm::vec2 point(size_t i, int end) const {
+    return end == 0 ? m_strokes[i].points.front() : m_strokes[i].points.back();
+  }
+  // The free end nearest to p within reach of a stroke like `like` (not `self`): (index, end),
+  // or index = npos.
+  std::pair<size_t, int> nearest(glm::vec2 p, size_t self, const std::vector<char>& used) const {
+    std::pair<size_t, int> best{std::string::npos, 0};
+    float best_d = m_reach;
+    const auto [cx, cy] = cell(p);
+    for (int64_t dy = -1; dy <= 1; ++dy)
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        const auto it = m_cells.find(pack(cx + dx, cy + dy));
+        if (it == m_cells.end()) continue;
+        for (const auto& [j, end] : it->second) {
+          if (j == self || used[j] || !alike(m_strokes[self], m_strokes[j])) continue;
+          const float d = glm::length(point(j, end) - p);
+          if (d < best_d || (d == best_d && j < best.first)) best = {j, end}, best_d = d;
+        }
+      }
+    return best;
+  }
+
+ private:
+  static bool alike(const Stroke& a, const Stroke& b) {
+    return a.cls == b.cls && a.opacity == b.opacity;
+  }
+  std::pair<int64_t, int64_t> cell(glm::vec2 p) const {
+    return {int64_t(std::floor(p.x / m_reach)), int64_t(std::floor(p.y / m_reach))};
+  }
+  static uint64_t pack(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
+  uint64_t key(glm::vec2 p) const {
+    const auto [x, y] = cell(p);
+    return pack(x, y);
+  }
+  const std::vector<Stroke>& m_strokes;
+  float m_reach;
+  std::unordered_map<uint64_t, std::vector<std::pair<size_t, int>>> m_cells;
+};
+
+// Appends `b` (reversed when `flip`) to the end of `a`, its first point replacing a's last.
+void append_stroke(Stroke& a, const Stroke& b, bool flip) {
+  const bool per_point = !a.widths.empty() || !b.widths.empty() || a.width != b.width;
+  if (per_point && a.widths.empty()) a.widths.assign(a.points.size(), a.width);
+  std::vector<float> bw =
+      b.widths.empty() ? std::vector<float>(b.points.size(), b.width) : b.widths;
+  std::vector<glm::vec2> bp = b.points;
+  if (flip) {
+    std::reverse(bp.begin(), bp.end());
+    std::reverse(bw.begin(), bw.end());
+  }
+  a.points.pop_back();
+  if (per_point) a.widths.pop_back();
+  a.points.insert(a.points.end(), bp.begin(), bp.end());
+  if (per_point) a.widths.insert(a.widths.end(), bw.begin(), bw.end());
+}
+
+void reverse_stroke(Stroke& s) {
+  std::reverse(s.points.begin(), s.points.end());
+  std::reverse(s.widths.begin(), s.widths.end());
+}
+
+}  // namespace
+
+void chain_strokes(std::vector<Stroke>& strokes, float reach) {
+  if (!(reach > 0.0f)) return;
+  const EndGrid grid(strokes, reach);
+  std::vector<char> used(strokes.size(), 0);
+  std::vector<Stroke> out;
+  out.reserve(strokes.size());
+  for (size_t i = 0; i < strokes.size(); ++i) {
+    if (used[i]) continue;
+    used[i] = 1;
+    Stroke s = strokes[i];
+    if (EndGrid::joinable(s)) {
+      // Extend the tail, then (reversed) the head.
+      for (int side = 0; side < 2; ++side) {
+        for (;;) {
+          const auto [j, end] = grid.nearest(s.points.back(), i, used);
+          if (j == std::string::npos) break;
+          used[j] = 1;
+          append_stroke(s, strokes[j], end == 1);
+        }
+        reverse_stroke(s);
+      }
+      if (s.points.size() > 2 && glm::length(s.points.front() - s.points.back()) < reach) {
+        s.points.pop_back();
+        if (!s.widths.empty()) s.widths.pop_back();
+        s.closed = true;
+      }
+    }
+    out.push_back(std::move(s));
+  }
+  strokes = std::move(out);
 }
 
 namespace {

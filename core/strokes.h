@@ -63,6 +63,13 @@ struct StrokeDrawing {
 // the non-zero rule). A constant-width stroke is outlined with its `width` at every point.
 std::vector<std::vector<glm::vec2>> stroke_outline(const Stroke& s, int cap_segments = 8);
 
+// Joins open strokes of one class and opacity whose ends meet (within `reach` px) into longer
+// strokes, so a run of short arcs along an outline becomes one path; a chain whose ends meet is
+// closed. Widths become per point where the joined strokes' differ. Greedy and deterministic
+// (strokes in order, each extended by the nearest free end, ties to the lower index); filled
+// regions and closed strokes are left as they are.
+void chain_strokes(std::vector<Stroke>& strokes, float reach);
+
 // Appends b's strokes to a (same size; a's colour is kept).
 void append_strokes(StrokeDrawing& a, const StrokeDrawing& b);
 

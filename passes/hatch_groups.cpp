@@ -221,8 +221,11 @@ cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
     for (int x = 0; x < wood.cols; ++x)
       if (wood.at<uint8_t>(y, x)) {
         const float v = dark.at<float>(y, x);
+        // Mid-rank: ties (an evenly shaded branch) share the middle of their run.
         const auto lo = std::lower_bound(values.begin(), values.end(), v);
-        rank.at<float>(y, x) = float(double(lo - values.begin()) / double(values.size()));
+        const auto hi = std::upper_bound(lo, values.end(), v);
+        rank.at<float>(y, x) =
+            float((double(lo - values.begin()) + 0.5 * double(hi - lo)) / double(values.size()));
       }
   return rank;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <tuple>
@@ -52,6 +53,7 @@ struct Primitive {
   float depth;           // view depth of the piece's centre, scene units
   glm::vec3 world;       // the piece's centre, world space
   float area = 0;        // the piece's leaves' area, scene units²
+  float extent = 0;      // the depth extent of the plant it belongs to (plant_extents)
   float rank = 0;        // tone rank at the centre
   uint32_t cluster = 0;  // the piece's leaf cluster
   // The quadratic form d^T Q d <= 1 of the ellipse about c.
@@ -206,7 +208,7 @@ struct ArcPoint {
 // The depth step that outlines primitive `p`: larger where it is lit.
 float step_of(const Primitive& p, const ArcStyle& s) {
   const float lit = 1.0f - smoothstep(s.lit - 0.05f, s.lit + 0.05f, p.rank);
-  return s.step * (1.0f + (s.lit_step - 1.0f) * lit);
+  return s.step * p.extent * (1.0f + (s.lit_step - 1.0f) * lit);
 }
 
 int front_at(const cv::Mat& front, cv::Point2f q) {
@@ -479,6 +481,28 @@ void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
   }
 }
 
+// Each primitive's plant depth extent: the depth range of the primitives of its plant as the
+// picture shows it (a connected piece of the primitive buffer), so several plants side by side (a
+// group of ferns) each get their own step; a primitive whose centre is hidden or out of the
+// frame takes the whole picture's.
+void plant_extents(const LeafLayer& layer, std::vector<Primitive>& prims) {
+  cv::Mat labels;
+  const int n = cv::connectedComponents(layer.front != 0, labels, 8, CV_32S);
+  std::vector<float> lo(size_t(n), std::numeric_limits<float>::max()), hi(size_t(n), 0.0f);
+  std::vector<int> of(prims.size(), 0);
+  for (size_t i = 0; i < prims.size(); ++i) {
+    const int x = int(std::floor(prims[i].c.x)), y = int(std::floor(prims[i].c.y));
+    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
+    const int l = labels.at<int>(y, x);
+    of[i] = l;
+    lo[size_t(l)] = std::min(lo[size_t(l)], prims[i].depth);
+    hi[size_t(l)] = std::max(hi[size_t(l)], prims[i].depth);
+  }
+  const float whole = layer.far - layer.near;
+  for (size_t i = 0; i < prims.size(); ++i)
+    prims[i].extent = of[i] > 0 ? hi[size_t(of[i])] - lo[size_t(of[i])] : whole;
+}
+
 }  // namespace
 
 LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
@@ -501,8 +525,9 @@ LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLinePar
                        least_px * in.units_per_px);
   paint_primitives(prims, layer);
   rank_primitives(in, p, std::max(1.0, detail / layer.factor), prims, layer);
+  plant_extents(layer, prims);
   ArcStyle s;
-  s.step = p.depth_step * float(std::max(lines.detail, 0.5f) / 10.0f) * (layer.far - layer.near);
+  s.step = p.depth_step * float(std::max(lines.detail, 0.5f) / 10.0f);
   s.fade = p.fade;
   s.lit = p.lit;
   s.lit_step = p.lit_step;
@@ -518,9 +543,12 @@ LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLinePar
   for (size_t i = 0; i < prims.size(); ++i)
     add_arcs(arc_points(prims, i, layer, s), s, arcs);
   layer.drawing.strokes = black_fills(prims, layer, p, 1.0f);
-  for (int k = 0; k < 2; ++k)
+  for (int k = 0; k < 2; ++k) {
+    // Arcs of neighbouring primitives that meet become one path (an outline of many leaves).
+    chain_strokes(arcs[k], 1.5f * float(layer.factor));
     for (Stroke& st : arcs[k])
       layer.drawing.strokes.push_back(std::move(st));
+  }
   return layer;
 }
 

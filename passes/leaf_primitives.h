@@ -6,7 +6,8 @@
 // wood, which no leaf hides, stays in front. A primitive's outline is drawn where it stands in
 // front of what lies behind it by more than a depth step, a share of the plant's depth extent
 // (leaves.depth_step at ink.detail = 10 px, in proportion to the detail: bigger primitives and
-// a bigger step give a more abstract crown of fewer, larger clumps), and fades in over a band
+// a bigger step give a more abstract crown of fewer, larger clumps; the plant is a connected
+// piece of the picture, so plants side by side each get their own), and fades in over a band
 // around the step (leaves.fade) by its width, so outlines thin out instead of popping as the
 // view turns. Against the paper the outline is the plant's silhouette (LineClass::Silhouette,
 // lines.silhouette_width); inside, a foliage line (LineClass::Foliage, lines.foliage_*).

@@ -1,7 +1,8 @@
 // The coherence acceptance measures (issue "Temporal coherence") on every tree in
 // ../shared/assets and the three samples, through `sylva tradeoff --study coherence` at 512², five
 // views 1° apart (four pairs), with the motion taken out (styles/reprojection.h):
-//   - ink and pen: line_pop (mean over the pairs) at most 5.5 %;
+//   - ink and pen: line_pop (mean over the pairs, every line pixel: those beside the plant move
+//     as its nearest pixel does) at most 8 % (issue "Pen-and-ink that depicts the tree");
 //   - watercolor: reprojection_error at most 0.7 x, and fresh blobs at most 0.8 x, what the code
 //     before the change measured in the same way (commit 5084dc8, below; README "Coherence"
 //     has both columns).
@@ -66,8 +67,8 @@ TEST_P(CoherenceAcceptance, LinesHoldAndPaintMovesWithThePlant) {
       "%s: line pop ink %.2f %% pen %.2f %%; reprojection error watercolor %.2f (%.2f x), "
       "blobs %.2f (%.2f x)\n",
       GetParam().c_str(), 100 * ink, 100 * pen, wc, wc / b.watercolor, blobs, blobs / b.blobs);
-  EXPECT_LE(ink, 0.055);
-  EXPECT_LE(pen, 0.055);
+  EXPECT_LE(ink, 0.08);
+  EXPECT_LE(pen, 0.08);
   EXPECT_LE(wc, 0.7 * b.watercolor);
   EXPECT_LE(blobs, 0.8 * b.blobs);
 }

@@ -16,9 +16,9 @@ TEST(Compare, EveryBuiltInStyleOnOneSheet) {
   const RunResult r =
       run_sylva("compare " + small_tree() + " --size 96 --graph " + dir + "/g.dot -o " + out);
   ASSERT_EQ(r.status, 0) << r.output;
-  // Seven styles; two Luft preprocessings: expressive, toon and watercolor share one, ink and
-  // pen (whose rho comes from ink.detail at this picture's scale) the other.
-  EXPECT_NE(r.output.find("7 cells"), std::string::npos) << r.output;
+  // Eight styles; two Luft preprocessings: expressive, toon and watercolor share one, ink,
+  // outline and pen (whose rho comes from ink.detail at this picture's scale) the other.
+  EXPECT_NE(r.output.find("8 cells"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("2 foliage preprocessing"), std::string::npos) << r.output;
   const cv::Mat sheet = cv::imread(out, cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(sheet.empty());
@@ -28,8 +28,8 @@ TEST(Compare, EveryBuiltInStyleOnOneSheet) {
   EXPECT_LT(sheet.cols, 3 * 96 + 40);
   EXPECT_GT(sheet.rows, 3 * 96 + 3 * 20);
   const std::string dot = read_file(dir + "/g.dot");
-  for (const char* pass : {"cell-2/ink-strokes", "cell-3/tone-strokes", "cell-5/watercolor",
-                           "cell-6/blobs", "foliage-0/foliage-illumination"})
+  for (const char* pass : {"cell-2/leaf-layer", "cell-3/ink-strokes", "cell-4/hatching",
+                           "cell-6/watercolor", "cell-7/blobs", "foliage-0/foliage-illumination"})
     EXPECT_NE(dot.find(pass), std::string::npos) << pass;
   // Same inputs, same bytes.
   const RunResult again =

@@ -140,7 +140,7 @@ TEST(LineStyles, ClosedOutlinesAreClosedPaths) {
   const std::string dir = temp_dir("closed");
   for (bool cube : {false, true}) {
     const std::string svg = dir + (cube ? "/cube.svg" : "/sphere.svg");
-    const RunResult r = run_sylva("render " + solid(dir, cube) + " --style ink --size 256 " +
+    const RunResult r = run_sylva("render " + solid(dir, cube) + " --style outline --size 256 " +
                                   "--azimuth 30 --elevation 30 -o " + svg);
     ASSERT_EQ(r.status, 0) << r.output;
     const std::string text = read_file(svg);
@@ -185,7 +185,7 @@ TEST(LineStyles, TurntableWritesOneSvgPerFrame) {
 TEST(LineStyles, BadVectorOutputsAreErrorsAndWriteNothing) {
   const std::string dir = temp_dir("vector-bad");
   const std::string scene = small_tree() + " --size 64 ";
-  expect_input_error("render " + scene + "--style toon -o " + dir + "/t.svg", "ink, pen");
+  expect_input_error("render " + scene + "--style toon -o " + dir + "/t.svg", "ink, outline, pen");
   expect_input_error("render " + scene + "--style watercolor -o " + dir + "/t.pdf", "no lines");
   expect_input_error("render " + scene + "--style ink --dpi 10001 -o " + dir + "/t.svg", "--dpi");
   expect_input_error("render " + scene + "--style ink --dpi -2 -o " + dir + "/t.pdf", "--dpi");

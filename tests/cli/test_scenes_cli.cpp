@@ -177,15 +177,16 @@ double lines_away_from(const std::string& a, const std::string& b, float px, int
   return lines ? double(away) / double(lines) : 1.0;
 }
 
-// ink draws the park's outline where its flattened twin draws it (the same surface points, each
-// instance's placed by its transform: npr/surface_samples.h), and inside it each plant's outline
-// where its crown stands in front of another's, which the twin (one plant) has not.
+// The outline drawing (the `outline` preset, lines.plants) draws the park's outline where its
+// flattened twin draws it (the same surface points, each instance's placed by its transform:
+// npr/surface_samples.h), and inside it each plant's outline where its crown stands in front of
+// another's, which the twin (one plant) has not.
 TEST(Park, InkOutlinesTheParkAsItsTwinAndEachPlantInIt) {
   const std::string dir = temp_dir("park-ink");
   for (const std::string& scene : {park(), flattened_park()}) {
     const std::string out = dir + (scene == park() ? "/park.png" : "/flat.png");
     const RunResult r =
-        run_sylva("render " + scene + " --style ink --size 640x480 --lod off -o " + out);
+        run_sylva("render " + scene + " --style outline --size 640x480 --lod off -o " + out);
     ASSERT_EQ(r.status, 0) << r.output;
   }
   int twin_lines = 0, park_lines = 0;
@@ -195,10 +196,11 @@ TEST(Park, InkOutlinesTheParkAsItsTwinAndEachPlantInIt) {
               twin_lines, park_lines, inside);
   EXPECT_GT(inside, 0.08);  // the plants' own outlines (15 % here)
   // Without them (lines.plants = false) the park draws its twin's lines.
-  const RunResult r = run_sylva("render " + park() +
-                                " --style ink --set lines.plants=false --size 640x480 --lod off "
-                                "-o " +
-                                dir + "/without.png");
+  const RunResult r =
+      run_sylva("render " + park() +
+                " --style outline --set lines.plants=false --size 640x480 --lod off "
+                "-o " +
+                dir + "/without.png");
   ASSERT_EQ(r.status, 0) << r.output;
   int without_lines = 0;
   EXPECT_LE(lines_away_from(dir + "/without.png", dir + "/flat.png", 1.5f, without_lines), 0.01);

@@ -103,3 +103,29 @@ TEST(StrokeDrawing, CountsAndAppendsByClass) {
 
 }  // namespace
 }  // namespace sylva::test
+
+namespace sylva::test {
+namespace {
+
+TEST(StrokeRaster, AFilledRegionCoversItsRingButItsHoles) {
+  StrokeDrawing d;
+  d.size = {64, 64};
+  Stroke s;
+  s.cls = LineClass::Shadow;
+  s.filled = true;
+  s.closed = true;
+  s.points = {{8, 8}, {56, 8}, {56, 56}, {8, 56}};
+  s.holes = {{{24, 24}, {40, 24}, {40, 40}, {24, 40}}};
+  d.strokes.push_back(s);
+  const cv::Mat c = rasterize_strokes(d);
+  EXPECT_FLOAT_EQ(c.at<float>(12, 12), 1.0f);  // in the ring
+  EXPECT_FLOAT_EQ(c.at<float>(32, 32), 0.0f);  // in the hole
+  EXPECT_FLOAT_EQ(c.at<float>(2, 2), 0.0f);    // outside
+  // The covered area is the ring's less the hole's: 48² - 16² px.
+  EXPECT_NEAR(cv::sum(c)[0], 48.0 * 48.0 - 16.0 * 16.0, 1.0);
+  EXPECT_STREQ(line_class_name(LineClass::Shadow), "shadow");
+  EXPECT_STREQ(line_class_name(LineClass::Foliage), "foliage");
+}
+
+}  // namespace
+}  // namespace sylva::test

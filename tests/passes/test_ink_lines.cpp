@@ -36,6 +36,13 @@ EdgeParams ink_edges() {
   return e;
 }
 
+// The outline drawing (the `outline` preset): the crown's one contour, lines.outline on.
+InkLineParams outline_lines() {
+  InkLineParams p;
+  p.outline = true;
+  return p;
+}
+
 bool all_finite(const StrokeDrawing& d) {
   for (const Stroke& s : d.strokes) {
     if (s.points.empty() || !(s.width > 0.0f) || !(s.opacity >= 0.0f && s.opacity <= 1.0f))
@@ -50,7 +57,7 @@ bool all_finite(const StrokeDrawing& d) {
 
 TEST(InkLines, TheOutlineIsOneClosedSilhouetteStrokeOverThePlantsOutline) {
   const InkLineImages in = scene_images(256);
-  const StrokeDrawing d = ink_line_strokes(in, ink_edges(), InkLineParams{}, 0);
+  const StrokeDrawing d = ink_line_strokes(in, ink_edges(), outline_lines(), 0);
   ASSERT_EQ(d.size, in.color.size());
   int closed = 0;
   for (const Stroke& s : d.strokes)
@@ -88,7 +95,7 @@ TEST(InkLines, APartInFrontOfAnotherGivesInteriorLinesAndWoodItsOwn) {
 }
 
 TEST(InkLines, DetailZeroKeepsTheLeafExactLines) {
-  InkLineParams p;
+  InkLineParams p = outline_lines();
   p.detail = 0.0f;
   EdgeParams e = ink_edges();
   e.min_length = 0.0f;
@@ -101,7 +108,7 @@ TEST(InkLines, DetailZeroKeepsTheLeafExactLines) {
 TEST(InkLines, WidthsFollowTheHierarchyTaperAndDepth) {
   const InkLineParams defaults;
   EXPECT_GE(defaults.silhouette.width, 1.5f * defaults.interior.width);
-  InkLineParams p;
+  InkLineParams p = outline_lines();
   p.silhouette.width = 4.0f;
   p.interior.width = 2.0f;
   p.interior.taper = 20.0f;

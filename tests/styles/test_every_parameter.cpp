@@ -41,7 +41,7 @@ void PrintTo(const Case& c, std::ostream* os) {
 const std::map<std::string, std::vector<std::string>>& sections_read() {
   static const std::map<std::string, std::vector<std::string>> s = {
       {"shaded", {"style", "foliage", "ao"}},
-      {"ink", {"style", "foliage", "ao", "edges", "ink", "lines", "pen"}},
+      {"ink", {"style", "foliage", "ao", "edges", "ink", "lines", "leaves", "pen"}},
       {"toon", {"style", "foliage", "ao", "toon"}},
       {"watercolor", {"style", "foliage", "ao", "watercolor"}},
       {"blobs", {"style", "foliage", "ao", "edges", "blobs"}},

@@ -3,10 +3,12 @@
 // wall, seen by orbit cameras. A camera that does not move gives exactly 0; a 1 degree turn
 // gives a small error (bilinear resampling only, stated below) at 256² and 512² alike; pixels a
 // moved camera uncovers are left out by the depth test; lines fixed to the surface do not pop,
-// lines that vanish do.
+// lines that vanish do; lines beside the plant move as its nearest pixel does.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "styles/reprojection.h"
 
@@ -118,6 +120,55 @@ TEST(Reprojection, LinesFixedToTheSurfaceStayAndVanishingLinesPop) {
   CoherenceFrame none = b;
   none.lines.release();
   EXPECT_FALSE(frame_coherence(a, none).line_pop.has_value());
+}
+
+// A square [-1, 1]² in the plane z = 0 seen by an orthographic camera 4 units across from +z,
+// moved `shift` units along x (so the square moves left in the image); lines: a ring 2 px
+// outside the square, drawn where the square is (`follow`) or where it was at shift 0.
+CoherenceFrame flat_frame(int size, float shift, bool follow) {
+  CoherenceFrame f;
+  Camera& c = f.camera;
+  c.eye = {shift, 0, 5};
+  c.view = glm::lookAt(c.eye, glm::vec3(shift, 0, 0), glm::vec3(0, 1, 0));
+  c.proj = glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.1f, 100.0f);
+  c.ortho = true;
+  c.width = c.height = size;
+  f.image = cv::Mat(size, size, CV_8UC4, cv::Scalar(255, 255, 255, 0));
+  f.position = cv::Mat(size, size, CV_32FC3, cv::Scalar(0, 0, 0));
+  f.lines = cv::Mat::zeros(size, size, CV_8UC1);
+  const float px = 4.0f / float(size);
+  auto square_px = [&](float s) {  // the square's box in the frame of camera shift s
+    const int x0 = int(std::lround((-1.0f - s + 2.0f) / px)),
+              x1 = int(std::lround((1.0f - s + 2.0f) / px));
+    const int y0 = int(std::lround(1.0f / px)), y1 = int(std::lround(3.0f / px));
+    return cv::Rect(x0, y0, x1 - x0, y1 - y0);
+  };
+  const cv::Rect sq = square_px(shift);
+  for (int y = sq.y; y < sq.br().y; ++y)
+    for (int x = sq.x; x < sq.br().x; ++x) {
+      const float wx = (x + 0.5f) * px - 2.0f + shift, wy = 2.0f - (y + 0.5f) * px;
+      const glm::vec3 v = glm::vec3(c.view * glm::vec4(wx, wy, 0.0f, 1.0f));
+      f.position.at<cv::Vec3f>(y, x) = {v.x, v.y, v.z};
+      f.image.at<cv::Vec4b>(y, x) = pattern({wx, wy, 0.0f});
+    }
+  const cv::Rect ring = square_px(follow ? shift : 0.0f);
+  cv::rectangle(f.lines, {ring.x - 3, ring.y - 3}, {ring.br().x + 2, ring.br().y + 2}, 255, 1);
+  return f;
+}
+
+TEST(Reprojection, LinesBesideThePlantMoveAsItsNearestPixelDoes) {
+  // The square moves 6 px between the frames: an outline around it that moves with it does not
+  // pop, one left where the square was does.
+  const int size = 256;
+  const float shift = 6.0f * 4.0f / float(size);
+  const FrameCoherence moved =
+      frame_coherence(flat_frame(size, 0.0f, true), flat_frame(size, shift, true));
+  ASSERT_TRUE(moved.line_pop.has_value());
+  EXPECT_LT(*moved.line_pop, 0.02);
+  const FrameCoherence stuck =
+      frame_coherence(flat_frame(size, 0.0f, true), flat_frame(size, shift, false));
+  ASSERT_TRUE(stuck.line_pop.has_value());
+  EXPECT_GT(*stuck.line_pop, 0.4);
 }
 
 }  // namespace

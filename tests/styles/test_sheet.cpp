@@ -84,6 +84,8 @@ struct SheetRig {
     sheet.raster.lighting = Lighting::three_point();
     sheet.foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
     sheet.scene_sphere = scene.framing_sphere();
+    sheet.scene = &scene;  // the ink styles' surface samples and leaf pieces
+    sheet.branch_cluster = scene.branch_cluster_id();
     sheet.foliage = [this](const FoliageSettings& f) {
       ++foliage_calls;
       IlluminationSetup is;
@@ -130,7 +132,8 @@ TEST(Sheet, CellsShareBuffersAndPreprocessingAndMatchTheirRenders) {
   EXPECT_EQ(rig.foliage_calls, 4);
   EXPECT_TRUE(graph.pass_live("foliage-0/foliage-illumination"));
   EXPECT_FALSE(graph.pass_live("foliage-3/foliage-illumination"));
-  EXPECT_TRUE(graph.pass_live("cell-1/ink-strokes"));
+  EXPECT_TRUE(graph.pass_live("cell-1/leaf-layer"));
+  EXPECT_TRUE(graph.pass_live("cell-1/wood-strokes"));
   graph.execute();
   for (size_t i = 0; i < list.size(); ++i) {
     const cv::Mat& cell = graph.get<cv::Mat>(plan.outputs[i]);

@@ -18,7 +18,8 @@
 namespace sylva::test {
 namespace {
 
-// Every kind of stroke: closed, open, tapered (filled), dots, a tone layer, half opacity.
+// Every kind of stroke: closed, open, tapered (filled), dots, a tone layer, half opacity, a
+// filled region with a hole (the shadow layer).
 StrokeDrawing drawing() {
   StrokeDrawing d;
   d.size = {160, 120};
@@ -39,7 +40,12 @@ StrokeDrawing drawing() {
   dot.cls = LineClass::Tone;
   dot.points = {{100, 60}};
   dot.width = 5.0f;
-  d.strokes = {dot};
+  Stroke shadow;
+  shadow.cls = LineClass::Shadow;
+  shadow.filled = shadow.closed = true;
+  shadow.points = {{100, 4}, {150, 4}, {150, 40}, {100, 40}};
+  shadow.holes = {{{115, 15}, {135, 15}, {135, 30}, {115, 30}}};
+  d.strokes = {shadow, dot};
   for (int i = 0; i < 6; ++i) {
     tone.points = {{30.0f + 6 * i, 70}, {40.0f + 6 * i, 50}};
     d.strokes.push_back(tone);
@@ -95,7 +101,7 @@ TEST(SvgWriter, WellFormedLayersRenderedByRsvgLikeTheRaster) {
   const RunResult lint = run_command("xmllint --noout " + dir + "/d.svg");
   EXPECT_EQ(lint.status, 0) << lint.output;
   const std::string svg = read_file(dir + "/d.svg");
-  for (const char* layer : {"paper", "silhouette", "wood", "tone"})
+  for (const char* layer : {"paper", "shadow", "silhouette", "wood", "tone"})
     EXPECT_NE(svg.find(std::string("inkscape:groupmode=\"layer\" id=\"layer-") + layer +
                        "\" inkscape:label=\"" + layer + "\""),
               std::string::npos)
