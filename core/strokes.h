@@ -53,6 +53,10 @@ struct StrokeDrawing {
   cv::Size size;                      // the image the strokes are drawn on, px
   glm::vec3 color{0.0f, 0.0f, 0.0f};  // linear RGB of the ink
   std::vector<Stroke> strokes;        // in drawing order
+  // The paint under the strokes (a stacked preset's paint layer, styles/style.h): CV_8UC4 BGRA
+  // sRGB, straight alpha, `size`; empty = none. Vector files carry it as an image under the
+  // lines.
+  cv::Mat paint;
   size_t count(LineClass c) const;
 };
 

@@ -194,4 +194,42 @@ ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandl
   return out;
 }
 
+
+cv::Mat lines_over(const cv::Mat& lines, const cv::Mat& picture, const glm::vec3& line_color) {
+  const cv::Size size = lines.size();
+  expect_image(lines, CV_32FC1, size, "lines");
+  expect_image(picture, CV_8UC4, size, "picture");
+  const std::vector<uint8_t>& encode_table = encode_lut();
+  const cv::Vec3f line8(encode(encode_table, line_color.b), encode(encode_table, line_color.g),
+                        encode(encode_table, line_color.r));
+  cv::Mat out(size, CV_8UC4);
+  for_bands(size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const float* l = lines.ptr<float>(y);
+      const cv::Vec4b* p = picture.ptr<cv::Vec4b>(y);
+      cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
+      for (int x = 0; x < size.width; ++x) {
+        const float ink = std::clamp(l[x], 0.0f, 1.0f), a = p[x][3] / 255.0f;
+        const float alpha = ink + a * (1.0f - ink);  // straight alpha, lines over the picture
+        const float keep = alpha > 0.0f ? a * (1.0f - ink) / alpha : 1.0f;
+        for (int k = 0; k < 3; ++k)
+          o[x][k] = uint8_t(round_non_negative(p[x][k] * keep + line8[k] * (1.0f - keep)));
+        o[x][3] = uint8_t(round_non_negative(alpha * 255.0f));
+      }
+    }
+  });
+  return out;
+}
+
+ImageHandle add_lines_over_pass(RenderGraph& g, ImageHandle lines, ImageHandle picture,
+                                const glm::vec3& line_color) {
+  const auto out = g.resource<cv::Mat>("lines-over");
+  g.add_pass("lines-over", {lines, picture}, {out},
+             [lines, picture, out, line_color](PassContext& ctx) {
+               ctx.write(out, lines_over(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(picture),
+                                         line_color));
+             });
+  return out;
+}
+
 }  // namespace sylva

@@ -69,4 +69,15 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
 ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
                                    const InkParams& p);
 
+// A stacked preset's lines over the picture below them (styles/style.h, build_layers): the
+// line colour (linear RGB) laid over `picture` (CV_8UC4 BGRA sRGB, straight alpha) with the
+// coverage `lines` (CV_32FC1 in [0, 1]), in sRGB-encoded values as composite_ink lays them
+// over paper, so a line pixel over white paint is the line style's pixel. Where the picture is
+// transparent the lines keep their coverage as alpha. Returns CV_8UC4 BGRA sRGB.
+cv::Mat lines_over(const cv::Mat& lines, const cv::Mat& picture, const glm::vec3& line_color);
+
+// Adds the pass "lines-over" and returns its output "lines-over".
+ImageHandle add_lines_over_pass(RenderGraph& g, ImageHandle lines, ImageHandle picture,
+                                const glm::vec3& line_color);
+
 }  // namespace sylva

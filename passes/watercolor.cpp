@@ -15,6 +15,7 @@
 #include "passes/pass_common.h"
 #include "passes/watercolor_common.h"
 #include "passes/watercolor_layers.h"
+#include "passes/watercolor_light.h"
 #include "passes/watercolor_textures.h"
 
 namespace sylva {
@@ -22,6 +23,7 @@ namespace sylva {
 namespace {
 
 using watercolor_internal::blur;
+using watercolor_internal::glaze;
 using watercolor_internal::encode_srgb;
 using watercolor_internal::kSqrt2Pi;
 using watercolor_internal::Layer;
@@ -29,6 +31,9 @@ using watercolor_internal::LayerOut;
 using watercolor_internal::luminance;
 using watercolor_internal::paint_layer;
 using watercolor_internal::paper_relief;
+using watercolor_internal::rim_allowed;
+using watercolor_internal::seen_wood;
+using watercolor_internal::smoothed_luminance;
 using watercolor_internal::PaperField;
 using watercolor_internal::Shared;
 using watercolor_internal::srgb_tables;
@@ -76,6 +81,7 @@ Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, do
   // Pigment pools where a wash dries against dry paper; a wet-on-wet edge diffuses instead.
   s.edge_gain = p.edge_darkening * (1.0f - 0.8f * p.edge_softness);
   s.detail = p.detail;
+  s.gradation = p.gradation;
   s.srgb = &srgb_tables();
   return s;
 }
@@ -313,22 +319,6 @@ cv::Mat granules(const PaperField& paper, const cv::Mat& relief, const Shared& s
   return out;
 }
 
-// Every layer painted, then glazed: the densities of transparent washes add (their
-// transmittances multiply), back to front (a fixed order keeps the bytes fixed).
-cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted) {
-  std::vector<LayerOut> painted(sorted.size());
-  cv::parallel_for_(cv::Range(0, int(sorted.size())), [&](const cv::Range& r) {
-    for (int k = r.start; k < r.end; ++k)
-      painted[size_t(k)] = paint_layer(s, sorted[size_t(k)], k);
-  });
-  cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
-  for (const LayerOut& L : painted) {
-    cv::Mat dst = density(L.roi);
-    cv::add(dst, L.density, dst);
-  }
-  return density;
-}
-
 // The world-space turbulence texture over the image. Evaluated at half resolution (the noise is
 // low-frequency): each half-size pixel takes the mean position of its covered pixels, which is
 // the same world point whichever way the view turns (the mean commutes with the rigid
@@ -387,7 +377,7 @@ cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& gr
         for (int ch = 0; ch < 3; ++ch) {
           float c = 1.0f;
           if (t[x][ch] > 0.0f) {
-            const float v = to_display(srgb, std::exp2(-t[x][ch]));
+            const float v = to_display(srgb, std::exp2(-p.strength * t[x][ch]));
             c = to_linear(srgb, pigment_density(pigment_density(v, d_paper), d_turb));
           }
           o[x][ch] = encode_srgb(srgb, paper_bgr[ch] * relief * c);
@@ -415,7 +405,11 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
       back_to_front(layers, first_label, in.samples ? &parts : nullptr, s);
   const PaperField paper(p, scale);
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
-  const cv::Mat density = glaze(s, sorted);
+  s.rim_ok = rim_allowed(s, sorted, p.rim_step);
+  if (p.gradation > 0.0f) s.soft_luminance = smoothed_luminance(s, in.id != 0);
+  const bool wood = in.samples && in.wood_cluster != 0;
+  const cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
+                                wood ? seen_wood(in.id, in.wood_cluster) : cv::Mat());
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
   const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
   const cv::Mat relief = paper_relief(paper, s.size);
@@ -429,6 +423,10 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
                 "threshold width: 0 hard wet-on-dry edges, 1 soft wet-on-wet edges");
   set.add_float("watercolor.edge_darkening", p.edge_darkening, 0.0, 1.0, "",
                 "pigment pooling along each wash's rim");
+  set.add_float("watercolor.rim_step", p.rim_step, 0.0, 1.0, "of the plant's depth",
+                "depth step between two washes above which the nearer one's rim darkens");
+  set.add_float("watercolor.gradation", p.gradation, 0.0, 1.0, "",
+                "wet-in-wet: how far a wash's value follows the light inside it (0 = flat)");
   set.add_float("watercolor.paper_strength", p.paper_strength, 0.0, 1.0, "",
                 "pigment density modulation by the paper grain (Bousseau's beta)");
   set.add_float("watercolor.turbulence_strength", p.turbulence_strength, 0.0, 1.0, "",
@@ -442,6 +440,8 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
       "feature size of the turbulence noise; auto = 6% of the scene");
   set.add_float("watercolor.wobble", p.wobble, 0.0, 8.0, "px at 1024 px",
                 "RMS displacement of the wash outlines along the paper gradient");
+  set.add_float("watercolor.strength", p.strength, 0.05, 1.0, "",
+                "pigment the washes carry: their optical density scaled (1 full, 0.5 dilute)");
   set.add_float("watercolor.detail", p.detail, 0.0, 1.0, "",
                 "leaf shading kept inside a wash where leaves stand in front (blurred depth test)");
   set.add_float("watercolor.grain", p.grain, 1.0, 16.0, "px at 1024 px",

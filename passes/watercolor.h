@@ -2,7 +2,8 @@
 // and abstraction"; Luft & Deussen 2006 "Real-time watercolor illustrations of plants using a
 // blurred depth test"). Every leaf cluster becomes one wash: its id mask is blurred and
 // thresholded (soft wet-on-wet or hard wet-on-dry edges), wobbled by the paper's gradient,
-// darkened along its rim where pigment pools, tinted with the cluster's mean colour, given leaf
+// darkened along its rim where pigment pools (on the plant's outer edge and at depth steps
+// between washes, watercolor.rim_step), graded with the light inside it, tinted with the cluster's mean colour, given leaf
 // detail through a blurred depth test, and glazed over the washes behind it, back to front by
 // mean depth. Glazing is subtractive: each wash is an optical density (-log2 of its linear
 // transmittance) scaled by its coverage, and densities add (transmittances multiply), so a
@@ -63,6 +64,13 @@ struct WatercolorParams {
   // down on soft edges (by 1 - 0.8 edge_softness: wet-on-wet diffuses rather than pools).
   // [0, 1]; default 0.6.
   float edge_darkening = 0.6f;
+  // Where rims darken besides the foliage's outer edge: between two washes whose depths differ
+  // by more than this share of the plant's depth extent (a nearer mass over a farther one);
+  // 0 = along every border between clusters, 1 = the outer edge only. [0, 1]; default 0.15.
+  float rim_step = 0.15f;
+  // Wet-in-wet gradation: how far a wash's value follows the light inside it (the shaded
+  // luminance smoothed at twice the blur), 0 = a flat wash per cluster. [0, 1]; default 0.8.
+  float gradation = 0.8f;
   // beta of Bousseau's density modulation by the paper texture (pigment settling in the
   // grain). [0, 1]; default 0.6.
   float paper_strength = 0.6f;
@@ -75,6 +83,10 @@ struct WatercolorParams {
   // Displacement of the mask lookup along the paper texture's gradient (hand-drawn wobble of
   // the wash outline), as the RMS displacement. px at 1024 px; default 1.5; [0, 8].
   float wobble = 1.5f;
+  // How much pigment the washes carry: their optical density is scaled by it, so 1 is the full
+  // wash and 0.5 a dilute one with twice the transmittance's log (a light wash under ink
+  // lines, pen-and-wash). [0.05, 1]; default 1.
+  float strength = 1.0f;
   // Leaf detail inside a wash: the share of the shaded colour's luminance variation kept where
   // leaves stand in front of their blurred depth (Luft & Deussen's blurred depth test).
   // [0, 1]; default 0.5.

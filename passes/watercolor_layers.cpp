@@ -204,6 +204,13 @@ cv::Vec3f leaf_detail(const Shared& s, const Layer& layer, float blurred_depth, 
   return c;
 }
 
+// Wet-in-wet gradation: the wash's value follows the light smoothed at its own scale (the
+// pigment's display colour scaled by the smoothed luminance over the layer's mean, bounded).
+float gradation(const Shared& s, const Layer& layer, float soft_luminance) {
+  const float ratio = std::clamp(soft_luminance / layer.mean_luminance, 0.4f, 1.8f);
+  return 1.0f + s.gradation * (ratio - 1.0f);
+}
+
 // The wash's optical density over the roi: the wobbled mask thresholded, weakened under nearer
 // clusters, darkened at its rim, tinted with the layer's pigment and its leaves' detail.
 cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect& roi,
@@ -223,6 +230,9 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
     const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
     const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
+    const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
+    const float* soft = s.gradation > 0.0f ? s.soft_luminance.ptr<float>(roi.y + y) + roi.x
+                                           : nullptr;
     const float sy = b.at(y);
     cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
     for (int x = 0; x < w; ++x) {
@@ -235,10 +245,12 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
       // Under a nearer cluster only part of this wash shows: the glaze over it darkens less
       // than two full washes, as a painter's dilute overlaps do.
       const float alpha = coverage * (1.0f - (1.0f - kUnderStrength) * sample(small.cover, sx, sy));
-      const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain);
-      const cv::Vec3f c = detail && lab[x] == k
-                              ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
-                              : layer.pigment_display;
+      const float rim = rim_ok ? rim_ok[x] : 1.0f;
+      const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain * rim);
+      cv::Vec3f c = detail && lab[x] == k
+                        ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
+                        : layer.pigment_display;
+      if (soft) c *= gradation(s, layer, soft[x]);
       for (int ch = 0; ch < 3; ++ch)
         t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
     }
@@ -260,6 +272,32 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
   const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);
   out.density = wash_density(s, layer, k, out.roi, scale, mask, small);
   return out;
+}
+
+// Every layer painted, then glazed: the densities of transparent washes add (their
+// transmittances multiply), back to front (a fixed order keeps the bytes fixed). The wood's
+// wash (id `wood`, 0 = none) is laid first, under the leaves, and where the id buffer shows
+// wood (`wood_seen`, CV_32FC1 in [0, 1]; empty = none) the leaves' washes leave it bare: the
+// trunk and branches are painted wherever they are seen, through the gaps of the crown.
+cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
+              const cv::Mat& wood_seen) {
+  std::vector<LayerOut> painted(sorted.size());
+  cv::parallel_for_(cv::Range(0, int(sorted.size())), [&](const cv::Range& r) {
+    for (int k = r.start; k < r.end; ++k)
+      painted[size_t(k)] = paint_layer(s, sorted[size_t(k)], k);
+  });
+  cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
+  cv::Mat bark = wood_seen.empty() ? density : cv::Mat(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
+  for (size_t k = 0; k < painted.size(); ++k) {
+    const LayerOut& L = painted[k];
+    cv::Mat dst = (wood != 0 && sorted[k].id == wood ? bark : density)(L.roi);
+    cv::add(dst, L.density, dst);
+  }
+  if (wood_seen.empty()) return density;
+  cv::Mat open, seen3;
+  cv::merge(std::vector<cv::Mat>{wood_seen, wood_seen, wood_seen}, seen3);
+  cv::subtract(cv::Scalar::all(1.0), seen3, open);
+  return bark + density.mul(open);
 }
 
 }  // namespace sylva::watercolor_internal

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "passes/watercolor_common.h"
 #include "passes/watercolor_textures.h"
@@ -61,11 +62,25 @@ struct Shared {
   float half_width = 0.5f;            // of the threshold smoothstep
   float edge_gain = 0;                // d - 1 at the steepest edge, <= 1 (d = 2: twice the pigment)
   float detail = 0;
+  // Where a wash's rim may darken (CV_32FC1 in [0, 1]): along the foliage's outer edge and where
+  // a nearer wash stands in front of a farther one by a depth step, not along every border
+  // between neighbouring clusters. Empty: everywhere.
+  cv::Mat rim_ok;
+  // The shaded luminance smoothed over the plant at the washes' scale (CV_32FC1, display
+  // values): the wet-in-wet gradation of value inside a wash follows it by `gradation`.
+  cv::Mat soft_luminance;
+  float gradation = 0;
   const SrgbTables* srgb = nullptr;
 };
 
 // Layer `k` (its index back to front in Shared::label) painted over its bounding box, padded by
 // the blur and the wobble.
 LayerOut paint_layer(const Shared& s, const Layer& layer, int k);
+
+// Every layer of `sorted` painted and glazed (their optical densities added, back to front):
+// CV_32FC3 over the image. The wood's wash (layer id `wood`, 0 = none) lies under the leaves',
+// which leave it bare where `wood_seen` (CV_32FC1 in [0, 1], empty = none) shows it.
+cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
+              const cv::Mat& wood_seen);
 
 }  // namespace sylva::watercolor_internal

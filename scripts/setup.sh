@@ -14,7 +14,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libosmesa6-dev libopencv-dev libavutil-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
-  libpng-dev libjpeg-dev libgif-dev libcairo2-dev libopenexr-dev libmurmurhash-dev
+  libpng-dev libjpeg-dev libgif-dev libcairo2-dev libglib2.0-dev libopenexr-dev libmurmurhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 test_packages=(

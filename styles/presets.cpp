@@ -70,6 +70,22 @@ void apply_value(const std::string& key, const toml::node& v, ParamSet& set,
   }
 }
 
+// `layers = [...]`: preset names or paths (a relative path resolved against the file's folder).
+std::vector<std::string> layer_names(const toml::node& v, const Loaded& l, const std::string& label) {
+  const toml::array* list = v.as_array();
+  if (!list || list->empty())
+    throw InputError(label, "layers must be a list of one or more preset names or paths");
+  std::vector<std::string> names;
+  for (const toml::node& n : *list) {
+    if (!n.is_string()) throw InputError(label, "layers must list strings");
+    fs::path name(*n.value<std::string>());
+    if (is_preset_path(name.string()) && name.is_relative() && !l.dir.empty()) name = l.dir / name;
+    if (!is_preset_path(name.string())) load(name.string(), {}, label + ": layers");
+    names.push_back(name.string());
+  }
+  return names;
+}
+
 void apply(const std::string& name_or_path, const fs::path& relative_to, ParamSet& set,
            const std::string& where, std::vector<std::string>& stack, PresetInfo& info) {
   const Loaded l = load(name_or_path, relative_to, where);
@@ -97,6 +113,10 @@ void apply(const std::string& name_or_path, const fs::path& relative_to, ParamSe
   for (auto&& [k, v] : t) {
     const std::string key(k.str());
     if (key == "inherits") continue;
+    if (key == "layers") {
+      info.layers = layer_names(v, l, label);
+      continue;
+    }
     if (key == "description" || key == "builder") {
       if (!v.is_string()) throw InputError(label, key + " must be a string");
       const std::string text = *v.value<std::string>();
@@ -111,7 +131,8 @@ void apply(const std::string& name_or_path, const fs::path& relative_to, ParamSe
     const toml::table* section = v.as_table();
     if (!section) {
       throw InputError(label, "unknown top-level key '" + key +
-                                  "' (allowed: description, builder, inherits, and sections "
+                                  "' (allowed: description, builder, inherits, layers, and "
+                                  "sections "
                                   "such as [edges])");
     }
     for (auto&& [k2, v2] : *section)
@@ -141,9 +162,13 @@ PresetInfo apply_preset(const std::string& name_or_path, ParamSet& set, const st
   PresetInfo info;
   std::vector<std::string> stack;
   apply(name_or_path, fs::path(), set, where, stack, info);
-  if (info.builder.empty())
-    throw InputError(info.source == "built-in" ? info.name + ".toml" : info.source,
-                     "names no builder (add builder = \"...\" or inherit a preset that does)");
+  const std::string label = info.source == "built-in" ? info.name + ".toml" : info.source;
+  if (info.builder.empty() && info.layers.empty())
+    throw InputError(label, "names no builder (add builder = \"...\", layers = [...] or inherit "
+                            "a preset that does)");
+  if (!info.builder.empty() && !info.layers.empty())
+    throw InputError(label, "names both a builder ('" + info.builder +
+                                "') and layers: a stacked preset's layers name the builders");
   return info;
 }
 

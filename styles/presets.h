@@ -7,6 +7,10 @@
 //   [edges]
 //   width = 2.0                        # any key of bind_style_params, in its section
 //
+// A stacked preset names `layers = ["watercolor", "ink"]` (presets, not builders) instead of a
+// builder: each layer is its own preset, drawn from one set of G-buffers and composited in
+// order (styles/style.h, Style); the keys the stacked preset sets apply to every layer.
+//
 // Built-in presets (styles/presets/*.toml) are compiled into the binary; `--style my.toml`
 // loads a user file, whose `inherits` may name built-ins or other files (relative to it).
 // Syntax errors (with line and column), unknown keys, wrong types, out-of-range values,
@@ -31,7 +35,8 @@ struct PresetInfo {
   std::string name;                // built-in name or the file's stem
   std::string source;              // "built-in" or the file path
   std::string description;         // the preset's own, else the nearest inherited one
-  std::string builder;             // the last one set along the inheritance chain
+  std::string builder;             // the last one set along the inheritance chain; "" = layers
+  std::vector<std::string> layers;  // a stacked preset's layers (the last set along the chain)
   std::vector<std::string> chain;  // presets applied, in order, ending with this one
 };
 

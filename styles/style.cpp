@@ -184,7 +184,7 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
   ink.line_color = params.edges.color;
   // The colour target is drawn on a transparent clear for ink (Style::configure), so its
   // alpha is the coverage the composite needs, and its colour the wash.
-  return {add_ink_composite_pass(graph, lines, gbuffer.color, ink), strokes};
+  return {add_ink_composite_pass(graph, lines, gbuffer.color, ink), strokes, lines};
 }
 
 StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
@@ -295,6 +295,39 @@ Style::Style(const std::string& name_or_path, const std::vector<std::string>& ov
   m_info = apply_preset(name_or_path, m_set);
   for (const std::string& a : overrides)
     apply_assignment(a, m_set, "--set");
+  if (m_info.layers.empty())
+    m_traits = find_builder(m_info.builder, m_info.source).traits;
+  else
+    add_layers(name_or_path, overrides);
+}
+
+void Style::add_layers(const std::string& name_or_path, const std::vector<std::string>& overrides) {
+  const std::string label = m_info.source == "built-in" ? "preset '" + m_info.name + "'"
+                                                        : m_info.source;
+  for (const std::string& name : m_info.layers) {
+    auto layer = std::make_unique<Style>(name);
+    if (!layer->m_layers.empty())
+      throw InputError(label, "layer '" + name + "' is itself a stack of layers");
+    if (!m_layers.empty() && !layer->has_strokes())
+      throw InputError(label, "layer '" + name + "' draws no lines (builder " +
+                                  layer->m_info.builder +
+                                  "): every layer after the first must be a line style");
+    for (const auto& other : m_layers)
+      if (other->m_info.name == layer->m_info.name)
+        throw InputError(label, "layer '" + name + "' is named twice");
+    apply_preset(name_or_path, layer->m_set);  // the stacked preset's keys over every layer
+    for (const std::string& a : overrides)
+      apply_assignment(a, layer->m_set, "--set");
+    m_traits.strokes = m_traits.strokes || layer->m_traits.strokes;
+    m_traits.coverage_alpha = m_traits.coverage_alpha || layer->m_traits.coverage_alpha;
+    m_traits.blob_outlines = m_traits.blob_outlines || layer->m_traits.blob_outlines;
+    m_layers.push_back(std::move(layer));
+  }
+  m_params = primary().m_params;  // the G-buffers follow the line layer
+}
+
+const Style& Style::primary() const {
+  return m_layers.size() > 1 ? *m_layers[1] : *m_layers[0];
 }
 
 FoliageSettings Style::foliage_settings(const Camera& camera, const Sphere& sphere) const {
@@ -310,16 +343,24 @@ NormalMode Style::normals() const {
   return m_params.normals;
 }
 
+IdKind Style::id_kind() const {
+  if (m_layers.empty()) return find_builder(m_info.builder, m_info.source).ids;
+  // Only the cluster builders read the id buffer.
+  for (const auto& layer : m_layers)
+    if (layer->id_kind() == IdKind::Cluster) return IdKind::Cluster;
+  return IdKind::Primitive;
+}
+
 void Style::configure(RasterRequest& request) const {
   request.flat_albedo = m_params.albedo == AlbedoSource::Flat;
-  request.id_kind = find_builder(m_info.builder, m_info.source).ids;
+  request.id_kind = id_kind();
   // ink and blobs read the colour's alpha as coverage (the sheet keeps the view's background
   // for the style context).
   if (traits().coverage_alpha) request.background.a = 0.0f;
 }
 
 const BuilderTraits& Style::traits() const {
-  return find_builder(m_info.builder, m_info.source).traits;
+  return m_traits;
 }
 
 bool Style::has_strokes() const {
@@ -328,6 +369,7 @@ bool Style::has_strokes() const {
 
 StyleOutput Style::build(RenderGraph& graph, const GBufferHandles& gbuffer,
                          const StyleContext& context) const {
+  if (!m_layers.empty()) return build_layers(graph, gbuffer, m_layers, context);
   return find_builder(m_info.builder, m_info.source).build(graph, gbuffer, m_params, context);
 }
 

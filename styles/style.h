@@ -54,6 +54,9 @@ struct StyleContext {
 struct StyleOutput {
   ImageHandle image{};
   Handle<StrokeDrawing> strokes{};
+  // For styles made of lines: the lines' coverage (CV_32FC1 in [0, 1]) the image composites,
+  // so a stacked preset can lay the same lines over another layer's paint.
+  ImageHandle lines{};
 };
 
 // What the code around a builder needs to know of it, declared in the table instead of tested
@@ -106,6 +109,13 @@ StyleOutput build_blobs(RenderGraph& graph, const GBufferHandles& gbuffer,
                         const StyleParams& params, const StyleContext& context);
 
 // A preset resolved into parameters. Not copyable: `set` refers into `params`.
+//
+// A stacked preset (`layers = ["watercolor", "ink"]`, styles/presets.h) holds one Style per
+// layer, each its own preset with the stacked preset's keys and the overrides applied on top.
+// Every layer after the first must draw lines; build() draws the layers from one set of
+// G-buffers and lays each line layer's lines over the picture below, as the line style lays
+// them over paper. The G-buffers are rendered as the line layer asks (its normals, foliage
+// and AO settings: params() is the line layer's), so the lines are that style's lines.
 class Style {
  public:
   // Applies the preset (built-in name or .toml path), then each "key=value" of `overrides`
@@ -132,11 +142,26 @@ class Style {
   StyleOutput build(RenderGraph& graph, const GBufferHandles& gbuffer,
                     const StyleContext& context) const;
   bool has_strokes() const;  // whether build() gives a StrokeDrawing (styles made of lines)
+  // The layers of a stacked preset, in drawing order; empty for a plain one.
+  const std::vector<std::unique_ptr<Style>>& layers() const { return m_layers; }
 
  private:
+  void add_layers(const std::string& name_or_path, const std::vector<std::string>& overrides);
+  const Style& primary() const;  // the layer whose G-buffer settings a stack uses
+  IdKind id_kind() const;
+
   StyleParams m_params;
   ParamSet m_set;
   PresetInfo m_info;
+  std::vector<std::unique_ptr<Style>> m_layers;
+  BuilderTraits m_traits;  // the builder's, or for layers their union
 };
+
+// The picture of a stacked preset's layers (Style::layers): the first layer's image with each
+// later layer's lines laid over it (passes/composite.h, lines_over), and their strokes, whose
+// vector files carry the first layer's image as the paint under the lines when it draws none.
+StyleOutput build_layers(RenderGraph& graph, const GBufferHandles& gbuffer,
+                         const std::vector<std::unique_ptr<Style>>& layers,
+                         const StyleContext& context);
 
 }  // namespace sylva

@@ -19,6 +19,30 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
   return CAIRO_STATUS_SUCCESS;
 }
 
+// A BGRA sRGB straight-alpha image as cairo's premultiplied ARGB32, painted over the page.
+void paint_image(cairo_t* cr, const cv::Mat& bgra, double pt_per_px) {
+  SYLVA_CHECK(bgra.type() == CV_8UC4, "pdf_document: the paint must be CV_8UC4");
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> image(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, bgra.cols, bgra.rows),
+      &cairo_surface_destroy);
+  cairo_surface_flush(image.get());
+  unsigned char* data = cairo_image_surface_get_data(image.get());
+  const int stride = cairo_image_surface_get_stride(image.get());
+  for (int y = 0; y < bgra.rows; ++y) {
+    const cv::Vec4b* in = bgra.ptr<cv::Vec4b>(y);
+    unsigned char* out = data + static_cast<ptrdiff_t>(y) * stride;
+    for (int x = 0; x < bgra.cols; ++x)  // little-endian ARGB32 is B, G, R, A in memory
+      for (int k = 0; k < 4; ++k)
+        out[4 * x + k] = k == 3 ? in[x][3] : static_cast<unsigned char>((in[x][k] * in[x][3] + 127) / 255);
+  }
+  cairo_surface_mark_dirty(image.get());
+  cairo_save(cr);
+  cairo_scale(cr, pt_per_px, pt_per_px);
+  cairo_set_source_surface(cr, image.get(), 0, 0);
+  cairo_paint(cr);
+  cairo_restore(cr);
+}
+
 }  // namespace
 
 std::string pdf_document(const StrokeDrawing& d, const VectorPage& page) {
@@ -43,6 +67,7 @@ std::string pdf_document(const StrokeDrawing& d, const VectorPage& page) {
                            linear_to_srgb(page.paper->b));
       cairo_paint(cr.get());
     }
+    if (!d.paint.empty()) paint_image(cr.get(), d.paint, pt_per_px);
     paint_strokes(cr.get(), d, pt_per_px);
     cr.reset();
     cairo_surface_finish(surface.get());

@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <glib.h>
+#include <memory>
 #include <sstream>
 
 #include "core/color.h"
 #include "core/error.h"
 #include "core/io/atomic_file.h"
+#include "core/io/codecs_png.h"
 #include "core/params.h"
 
 namespace sylva {
@@ -58,6 +61,20 @@ void write_stroke(std::ostringstream& o, const Stroke& s) {
   o << "\" fill=\"currentColor\" stroke=\"none\"" << opacity << "/>\n";
 }
 
+// The drawing's paint as a layer holding one embedded PNG (base64 data URI).
+void write_paint(std::ostringstream& o, const StrokeDrawing& d) {
+  SYLVA_CHECK(d.paint.type() == CV_8UC4 && d.paint.size() == d.size,
+              "svg_document: the paint must be CV_8UC4 at the drawing's size");
+  std::string png;
+  SYLVA_CHECK(encode_png(d.paint, PngEncodeOptions{}, png), "svg_document: PNG encoding failed");
+  const std::unique_ptr<gchar, decltype(&g_free)> text(
+      g_base64_encode(reinterpret_cast<const guchar*>(png.data()), png.size()), &g_free);
+  o << "  <g inkscape:groupmode=\"layer\" id=\"layer-paint\" inkscape:label=\"paint\">\n"
+    << "    <image id=\"paint\" x=\"0\" y=\"0\" width=\"" << d.size.width << "\" height=\""
+    << d.size.height << "\" preserveAspectRatio=\"none\" xlink:href=\"data:image/png;base64,"
+    << text.get() << "\"/>\n  </g>\n";
+}
+
 std::string length(double px, double dpi) {
   return dpi > 0.0 ? num(px / dpi * 25.4) + "mm" : num(px);
 }
@@ -70,6 +87,7 @@ std::string svg_document(const StrokeDrawing& d, const VectorPage& page) {
   std::ostringstream o;
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\"?>\n"
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+       "xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
        "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" version=\"1.1\" width=\""
     << length(d.size.width, page.dpi) << "\" height=\"" << length(d.size.height, page.dpi)
     << "\" viewBox=\"0 0 " << d.size.width << ' ' << d.size.height << "\">\n";
@@ -77,6 +95,7 @@ std::string svg_document(const StrokeDrawing& d, const VectorPage& page) {
     o << "  <g inkscape:groupmode=\"layer\" id=\"layer-paper\" inkscape:label=\"paper\">\n"
       << "    <rect id=\"paper\" x=\"0\" y=\"0\" width=\"" << d.size.width << "\" height=\""
       << d.size.height << "\" fill=\"" << hex_color(*page.paper) << "\"/>\n  </g>\n";
+  if (!d.paint.empty()) write_paint(o, d);
   int groups[kLineClassCount] = {};
   for (size_t i = 0; i < d.strokes.size();) {
     const LineClass cls = d.strokes[i].cls;

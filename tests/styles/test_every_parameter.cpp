@@ -318,6 +318,8 @@ std::vector<Case> every_case() {
   std::vector<Case> cases;
   for (const std::string& name : builtin_preset_names()) {
     const Style style(name);
+    // A stacked preset's layers are built-in presets whose keys are covered on their own.
+    if (!style.layers().empty()) continue;
     const std::vector<std::string>& read = sections_read().at(style.info().builder);
     for (const ParamSpec& spec : style.set().specs())
       if (std::find(read.begin(), read.end(), spec.key.substr(0, spec.key.find('.'))) != read.end())

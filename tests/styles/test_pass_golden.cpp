@@ -144,7 +144,9 @@ TEST_P(PassGolden, EveryPassOutputMatches) {
 
 INSTANTIATE_TEST_SUITE_P(BuiltInStyles, PassGolden, ::testing::ValuesIn(builtin_preset_names()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
+                           std::string name = info.param;  // "pen-and-wash" -> "pen_and_wash"
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
                          });
 
 }  // namespace

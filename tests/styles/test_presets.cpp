@@ -30,7 +30,8 @@ TEST(Presets, BuiltinsLoadAndNameABuilder) {
   ASSERT_GE(names.size(), 2u);
   for (const std::string& n : names) {
     const Style s(n);
-    EXPECT_FALSE(s.info().builder.empty()) << n;
+    EXPECT_NE(s.info().builder.empty(), s.info().layers.empty()) << n;  // one or the other
+    EXPECT_EQ(s.layers().size(), s.info().layers.size()) << n;
     EXPECT_FALSE(s.info().description.empty()) << n;
     EXPECT_EQ(s.info().source, "built-in");
   }
@@ -96,6 +97,58 @@ TEST(Presets, BadPresetsNameFileAndKey) {
   EXPECT_NE(error_of(self).find("inheritance cycle"), std::string::npos);
   EXPECT_NE(error_of(dir + "/missing.toml").find("missing.toml"), std::string::npos);
   EXPECT_NE(error_of("nonesuch").find("unknown style 'nonesuch'"), std::string::npos);
+}
+
+TEST(Presets, StackedPresetsHoldALayerPerPresetWithTheStacksKeysOnEach) {
+  const Style s("pen-and-wash", {"ink.detail=6", "watercolor.blur=9"});
+  ASSERT_EQ(s.layers().size(), 2u);
+  EXPECT_EQ(s.layers()[0]->info().builder, "watercolor");
+  EXPECT_EQ(s.layers()[1]->info().builder, "ink");
+  for (const auto& layer : s.layers()) {
+    EXPECT_FLOAT_EQ(layer->params().lines.detail, 6.0f);
+    EXPECT_FLOAT_EQ(layer->params().watercolor.blur, 9.0f);
+  }
+  EXPECT_TRUE(s.has_strokes());
+  // The G-buffers follow the line layer.
+  EXPECT_EQ(s.normals(), Style("ink").normals());
+  EXPECT_FLOAT_EQ(s.params().lines.detail, 6.0f);
+  RasterRequest request;
+  s.configure(request);
+  EXPECT_EQ(request.id_kind, IdKind::Cluster);
+  EXPECT_EQ(request.background.a, 0.0f);  // ink reads the colour's alpha as coverage
+
+  const std::string dir = temp_dir("layer-presets");
+  const std::string mine =
+      write_preset(dir, "mine", "layers = [\"toon\", \"pen\"]\n[pen]\nspacing = 6\n");
+  const Style m(mine);
+  EXPECT_FLOAT_EQ(m.layers()[0]->params().pen.spacing, 6.0f);
+  EXPECT_FLOAT_EQ(m.layers()[1]->params().pen.spacing, 6.0f);
+  EXPECT_EQ(m.layers()[1]->params().pen.tone, PenTone::Hatching);  // pen's own keys kept
+}
+
+TEST(Presets, BadLayersNameFileAndReason) {
+  const std::string dir = temp_dir("bad-layers");
+  write_preset(dir, "stack", "layers = [\"watercolor\", \"ink\"]\n");
+  struct Case {
+    std::string text, needle;
+  } cases[] = {
+      {"layers = []\n", "one or more"},
+      {"layers = \"ink\"\n", "layers must be a list"},
+      {"layers = [3]\n", "layers must list strings"},
+      {"builder = \"ink\"\nlayers = [\"ink\"]\n", "both a builder ('ink') and layers"},
+      {"layers = [\"ink\", \"toon\"]\n", "layer 'toon' draws no lines"},
+      {"layers = [\"ink\", \"ink\"]\n", "named twice"},
+      {"layers = [\"stack.toml\", \"ink\"]\n", "itself a stack"},
+      {"layers = [\"nonesuch\"]\n", "unknown style 'nonesuch'"},
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    std::string name = "l";
+    name += std::to_string(i++);
+    const std::string path = write_preset(dir, name, c.text);
+    const std::string what = error_of(path);
+    EXPECT_NE(what.find(c.needle), std::string::npos) << c.text << " -> " << what;
+  }
 }
 
 TEST(Presets, SetOverridesAreCheckedLikePresetKeys) {

@@ -1,0 +1,26 @@
+// The watercolor pass's light and structure fields (passes/watercolor.h): where rims may darken,
+// the light a wash's gradation follows, and where the wood is seen.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "passes/watercolor_layers.h"
+
+namespace sylva::watercolor_internal {
+
+// Shared::rim_ok for the layers `sorted` (back to front, Shared::label indexing them): 1 within
+// reach of the blur and wobble of the foliage's outer edge or of a border between two washes
+// whose order depths differ by more than rim_step (in [0, 1]) of their depth range, fading to 0
+// beyond.
+cv::Mat rim_allowed(const Shared& s, const std::vector<Layer>& sorted, float rim_step);
+
+// Shared::soft_luminance: Shared::luminance averaged over the `covered` pixels (CV_8UC1
+// non-zero) only, with a Gaussian of twice the wash blur (at least 3 px).
+cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
+
+// Where the id buffer (CV_32SC1) shows the wood cluster, softened by 0.7 px: CV_32FC1 in [0, 1].
+cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster);
+
+}  // namespace sylva::watercolor_internal
