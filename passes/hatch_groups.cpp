@@ -31,7 +31,7 @@ float line_level(int64_t k) {
   return kLevels[((k % 4) + 4) % 4];
 }
 
-double hash01(uint64_t a, uint64_t b) {
+double group_hash01(uint64_t a, uint64_t b) {
   uint64_t s = a * 0x9e3779b97f4a7c15ull ^ (b + 0x632be59bd9b4e019ull);
   splitmix64(s);
   return uniform01(s);
@@ -73,7 +73,7 @@ void hatch_group(const Group& g, int layer, const cv::Mat& regions, const cv::Ma
   for (int64_t k = k0; k <= k1; ++k) {
     const float level = from + (1.0f - from) * line_level(k);
     const double stagger =
-        s.length * hash01(uint64_t(g.label) * 4 + uint64_t(layer), uint64_t(k) ^ s.seed);
+        s.length * group_hash01(uint64_t(g.label) * 4 + uint64_t(layer), uint64_t(k) ^ s.seed);
     Stroke st;
     st.cls = LineClass::Tone;
     st.opacity = s.opacity;

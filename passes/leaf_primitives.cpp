@@ -63,7 +63,7 @@ struct Primitive {
 };
 
 // Where a world point lands, in output px; false behind the eye.
-bool project(const glm::mat4& view_proj, const glm::vec3& p, cv::Size out, glm::vec2& at) {
+bool to_image(const glm::mat4& view_proj, const glm::vec3& p, cv::Size out, glm::vec2& at) {
   const glm::vec4 clip = view_proj * glm::vec4(p, 1.0f);
   if (!(clip.w > 0.0f)) return false;
   at = {(clip.x / clip.w * 0.5f + 0.5f) * float(out.width),
@@ -78,13 +78,13 @@ bool project(const glm::mat4& view_proj, const glm::vec3& p, cv::Size out, glm::
 bool make_primitive(const LeafPiece& piece, const glm::mat4& view, const glm::mat4& view_proj,
                     cv::Size out, double f, float h, LeafShape shape, float least, Primitive& p) {
   glm::vec2 c;
-  if (!project(view_proj, piece.centre, out, c)) return false;
+  if (!to_image(view_proj, piece.centre, out, c)) return false;
   float jac[2][3];
   for (int k = 0; k < 3; ++k) {
     glm::vec3 q = piece.centre;
     q[k] += h;
     glm::vec2 d;
-    if (!project(view_proj, q, out, d)) return false;
+    if (!to_image(view_proj, q, out, d)) return false;
     jac[0][k] = (d.x - c.x) / (h * float(f));
     jac[1][k] = (d.y - c.y) / (h * float(f));
   }
