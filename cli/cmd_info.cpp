@@ -1,5 +1,7 @@
 // sylva info SCENE [--json]: what the scene holds (triangles drawn and distinct, instances,
-// plants, cameras, ...) and what the loader decided.
+// plants, cameras, ...) and what the loader decided. sylva info --gl [BACKEND]: the GL backend
+// a rendering command would take (backend, device, vendor, renderer, version), the backends
+// built and the EGL devices; the scene is then optional.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -8,6 +10,8 @@
 
 #include "cli/commands.h"
 #include "cli/common_options.h"
+#include "core/error.h"
+#include "core/gl/gl_context.h"
 #include "core/scene/instances.h"
 
 namespace sylva::cli {
@@ -163,12 +167,40 @@ void print_text(const nlohmann::json& j) {
     std::printf("warning     %s\n", w.get<std::string>().c_str());
 }
 
+// What `choice` starts, which backends are built, and the EGL devices.
+nlohmann::json describe_gl(const GlChoice& choice) {
+  const std::unique_ptr<GlContext> context = create_gl_context(choice);
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [key, value] : gl_facts(*context))
+    j[key] = value;
+  j["software"] = context->info().software;
+  std::vector<std::string> built;
+  for (GlBackend b : built_gl_backends())
+    built.push_back(gl_backend_name(b));
+  j["built"] = built;
+  j["egl_devices"] = egl_devices();
+  return j;
+}
+
+void print_gl(const nlohmann::json& gl) {
+  for (const char* key :
+       {"backend", "device", "vendor", "renderer", "version", "platform", "fallback"})
+    if (gl.contains(key)) std::printf("gl %-9s%s\n", key, gl[key].get<std::string>().c_str());
+  std::string built;
+  for (const auto& b : gl["built"])
+    built += (built.empty() ? "" : ", ") + b.get<std::string>();
+  std::printf("gl built    %s\n", built.c_str());
+  for (const auto& d : gl["egl_devices"])
+    std::printf("egl device  %s\n", d.get<std::string>().c_str());
+}
+
 }  // namespace
 
 Action add_info_command(CLI::App& app) {
   struct Opts {
     SceneOptions scene;
     bool json = false;
+    std::string gl;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = app.add_subcommand(
@@ -177,13 +209,28 @@ Action add_info_command(CLI::App& app) {
       "materials, bounds, cameras and what was detected");
   add_scene_options(*cmd, o->scene);
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
-  return [o] {
-    Scene scene = load_scene_for_cli(o->scene, false);
-    nlohmann::json j = describe(scene);
-    if (o->json)
+  cmd->get_option("scene")->required(false);
+  CLI::Option* gl =
+      cmd->add_option("--gl", o->gl,
+                      "Describe the GL backend BACKEND (auto, egl, egl:N, osmesa; without a "
+                      "value: $SYLVA_GL, else auto) as the rendering commands would start it: "
+                      "backend, device, vendor, renderer, version, why auto passed over EGL; "
+                      "and the backends built and the EGL devices. The scene is then optional")
+          ->expected(0, 1);
+  return [o, gl] {
+    if (!gl->count() && o->scene.path.empty())
+      throw InputError("scene", "a scene file is required (or --gl)");
+    // Checked before the scene is loaded.
+    const GlChoice choice = gl->count() ? gl_choice_from_option(o->gl) : GlChoice{};
+    nlohmann::json j = nlohmann::json::object();
+    if (!o->scene.path.empty()) j = describe(load_scene_for_cli(o->scene, false));
+    if (gl->count()) j["gl"] = describe_gl(choice);
+    if (o->json) {
       std::cout << j.dump(2) << "\n";
-    else
-      print_text(j);
+      return;
+    }
+    if (!o->scene.path.empty()) print_text(j);
+    if (gl->count()) print_gl(j["gl"]);
   };
 }
 

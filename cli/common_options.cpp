@@ -95,6 +95,15 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
                  "view space (camera, the default) or world space (scene); intensity in [0, 10], "
                  "default 1")
       ->group(kViewGroup);
+  cmd.add_option("--gl", o.gl,
+                 "The OpenGL backend: auto (EGL, else OSMesa), egl (a GPU's EGL device if there is "
+                 "one, else Mesa's surfaceless llvmpipe), egl:N (EGL device N, from 0; sylva info "
+                 "--gl lists them), osmesa (llvmpipe through OSMesa). Default: $SYLVA_GL, else "
+                 "auto")
+      ->group(kGlGroup);
+  cmd.add_flag("--verbose", o.verbose,
+               "Print the GL backend, renderer and device the command renders with on stderr")
+      ->group(kGlGroup);
 }
 
 void parse_size(const std::string& s, int& width, int& height) {
@@ -185,6 +194,26 @@ void resolve_view_options(ViewOptions& o) {
       o.id_kind != "material")
     throw InputError("--id",
                      "expected primitive, cluster, object or material, got '" + o.id_kind + "'");
+  o.gl_choice = gl_choice_from_option(o.gl);
+}
+
+std::vector<std::pair<std::string, std::string>> gl_facts(const GlContext& context) {
+  const GlInfo& i = context.info();
+  std::string backend = i.backend == GlBackend::Egl ? "EGL (" + i.platform + ")" : "OSMesa";
+  std::vector<std::pair<std::string, std::string>> facts = {
+      {"backend", backend},   {"device", i.device.empty() ? "-" : i.device},
+      {"vendor", i.vendor},   {"renderer", i.renderer + (i.software ? " (CPU)" : "")},
+      {"version", i.version}, {"platform", i.window_system}};
+  if (!i.fallback.empty()) facts.push_back({"fallback", i.fallback});
+  return facts;
+}
+
+std::unique_ptr<GlContext> start_gl(const ViewOptions& o) {
+  std::unique_ptr<GlContext> context = create_gl_context(o.gl_choice);
+  if (o.verbose)
+    for (const auto& [key, value] : gl_facts(*context))
+      std::fprintf(stderr, "sylva: GL %s: %s\n", key.c_str(), value.c_str());
+  return context;
 }
 
 const SceneCamera& find_file_camera(const Scene& scene, const std::string& text) {

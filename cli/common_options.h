@@ -1,12 +1,14 @@
 // Options shared by the sylva subcommands: scene loading (--foliage, --clusters, --seed),
 // camera and image (--size, --azimuth, --elevation, --distance, --fov, --ortho, --ssaa,
-// --background, --ambient, --ground, --ground-color), and the loader pipeline they drive.
+// --background, --ambient, --ground, --ground-color), the GL backend (--gl, --verbose), and
+// the loader pipeline they drive.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
 #include "core/gl/camera.h"
+#include "core/gl/gl_context.h"
 #include "core/gl/lights.h"
 #include "core/gl/rasterizer.h"
 #include "core/scene/scene.h"
@@ -20,6 +22,7 @@ inline constexpr const char* kViewGroup = "View options";
 inline constexpr const char* kFoliageGroup = "Foliage illumination options";
 inline constexpr const char* kStyleGroup = "Style options";
 inline constexpr const char* kTurntableGroup = "Turntable options";
+inline constexpr const char* kGlGroup = "GL options";
 
 struct SceneOptions {
   std::string path;
@@ -50,12 +53,23 @@ struct ViewOptions {
   // --camera NAME|INDEX: a camera of the file (Scene::cameras, `sylva info` lists them) in
   // place of the orbit camera; empty = the orbit camera.
   std::string camera;
+  // --gl auto|egl|egl:N|osmesa: the GL backend (core/gl/gl_context.h); "" = $SYLVA_GL, else
+  // auto. Every command with the view options renders, so it carries the GL options too.
+  std::string gl;
+  // --verbose: the backend, renderer and device taken, on stderr.
+  bool verbose = false;
   int width = 0, height = 0;  // parsed from size
+  GlChoice gl_choice;         // parsed from gl and the environment
 };
 void add_view_options(CLI::App& cmd, ViewOptions& o);
 // Parses and range-checks the view options (size, ssaa, background, ambient, id kind,
-// ground colour).
+// ground colour, GL backend).
 void resolve_view_options(ViewOptions& o);
+// A context of the backend the options choose (create_gl_context); with --verbose, says on
+// stderr which backend, renderer and device it is ("sylva: GL: ...").
+std::unique_ptr<GlContext> start_gl(const ViewOptions& o);
+// The lines `sylva info --gl` and --verbose print about `context`: "backend  EGL (surfaceless)".
+std::vector<std::pair<std::string, std::string>> gl_facts(const GlContext& context);
 // The view's camera: the file's camera named by --camera (make_file_camera), else the orbit
 // camera framing the scene with its depth range fitted to the whole scene. Throws
 // InputError("--camera", ...) naming the file's cameras when none matches.

@@ -19,7 +19,7 @@ std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo,
   f->scene = load_scene_for_cli(so);
   apply_ground_option(f->scene, vo);
   f->setup.camera = view_camera(f->scene, vo);
-  f->context = create_gl_context();
+  f->context = start_gl(vo);
   f->rasterizer = std::make_unique<Rasterizer>(*f->context);
   f->rasterizer->upload(f->scene);
   if (vo.lod == "on" && f->scene.instanced()) {

@@ -47,7 +47,8 @@ string(JOIN "\n" CPACK_DEBIAN_PACKAGE_DESCRIPTION
   "drawings, pen hatching, toon shading, watercolour and blob paintings, and"
   "turntable animations (MP4, GIF), with the expressive foliage illumination"
   "of Luft, Balzer and Deussen and the ambient occlusion of Hegeman et al."
-  "It renders offscreen through Mesa (OSMesa) and needs no display.")
+  "It renders offscreen through EGL (a GPU, or Mesa's llvmpipe on the CPU) or"
+  "OSMesa, and needs no display.")
 set(SYLVA_MAINTAINER "Seed 36bbdae1 maintainers <maintainers@users.noreply.h-seed-36bbdae1.example>"
   CACHE STRING "The .deb's Maintainer field")
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${SYLVA_MAINTAINER}")
