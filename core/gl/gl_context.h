@@ -12,6 +12,9 @@ class GlContext {
  public:
   virtual ~GlContext() = default;
   virtual void make_current() = 0;
+  // Leaves no context current in the calling thread, so that another thread may make this one
+  // current next (a program rendering one scene from several threads: the Python module).
+  virtual void release_current() = 0;
   virtual std::string description() const = 0;  // "OSMesa 22.3.6 / llvmpipe / 4.5 core"
 };
 

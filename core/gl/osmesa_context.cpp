@@ -60,6 +60,12 @@ void OsmesaContext::make_current() {
   }
 }
 
+void OsmesaContext::release_current() {
+  // OSMesaMakeCurrent(NULL, NULL, ...) unbinds; only this context's own binding is undone.
+  if (OSMesaGetCurrentContext() == as_osmesa(m_context))
+    OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
+}
+
 std::string OsmesaContext::description() const {
   return m_description;
 }

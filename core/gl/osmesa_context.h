@@ -22,6 +22,7 @@ class OsmesaContext final : public GlContext {
   OsmesaContext& operator=(const OsmesaContext&) = delete;
 
   void make_current() override;
+  void release_current() override;
   std::string description()
       const override;  // "OSMesa / llvmpipe (...) / 4.5 (Core Profile) Mesa 22.3.6"
 
