@@ -124,7 +124,7 @@ void bind_scene(py::module_& m) {
       "of one Scene run one at a time; the foliage preprocessing is cached per Scene.")
       .def("info", &info, "What the scene holds, as `sylva info --json` prints it (a dict)")
       .def_property_readonly(
-          "cameras", [](const PyScene& s) { return info(s)["cameras"]; },
+          "cameras", [](const PyScene& s) -> py::object { return info(s)["cameras"]; },
           "The file's cameras (name, type, eye, ...): camera= takes a name or an index")
       .def_property_readonly(
           "source", [](const PyScene& s) { return s.frame->scene.report.source; },
