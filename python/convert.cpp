@@ -73,9 +73,16 @@ void set_view_key(ViewOptions& o, const std::string& key, const py::handle& v) {
 
 ViewOptions view_options(const py::dict& view, const ViewOptions& base) {
   ViewOptions o = base;
-  for (const auto& [key, value] : view)
-    if (!value.is_none() || key.cast<std::string>() == "camera")
-      set_view_key(o, key.cast<std::string>(), value);
+  for (const auto& [key, value] : view) {
+    const std::string name = key.cast<std::string>();
+    if (value.is_none() && name != "camera") continue;
+    try {
+      set_view_key(o, name, value);
+    } catch (const py::cast_error&) {
+      throw py::type_error("keyword '" + name + "': unexpected type " +
+                           py::repr(py::type::handle_of(value)).cast<std::string>());
+    }
+  }
   resolve_view_options(o);
   return o;
 }

@@ -81,7 +81,8 @@ struct TempDir {
 };
 
 // sylva.sample: the plant `sylva sample KIND` writes, written to a temporary .glb and loaded
-// from it, so the scene is the one the CLI renders from that file.
+// from it (with the load's default seed, 1, as `sylva render` loads it), so the scene is the one
+// the CLI renders from that file.
 std::shared_ptr<PyScene> sample(const std::string& kind, uint64_t seed, int leaves, int blades,
                                 const LoadArgs& args) {
   const TempDir dir;
@@ -149,7 +150,7 @@ void bind_scene(py::module_& m) {
       [](const std::string& kind, uint64_t seed, int leaves, int blades, int clusters, bool ground,
          const py::object& cache_dir) {
         return sample(kind, seed, leaves, blades,
-                      load_args("", "auto", clusters, seed, ground, "#b4b4ac", true, cache_dir));
+                      load_args("", "auto", clusters, 1, ground, "#b4b4ac", true, cache_dir));
       },
       "A procedural plant (tree, bush, conifer) or grass patch, as `sylva sample KIND` writes "
       "it and `sylva render` loads it",

@@ -80,6 +80,8 @@ def test_unknown_buffer_and_keyword(tree, tree_glb, tmp_path):
     assert message == cli_error("buffers", tree_glb, "--buffers", "nope", "--out-dir",
                                 tmp_path / "b")
     assert "azimut" in raised(TypeError, lambda: sylva.render(tree, size=32, azimut=3))
+    assert "ssaa" in raised(TypeError, lambda: sylva.render(tree, size=32, ssaa=2.5))
+    assert "params" in raised(TypeError, lambda: sylva.render(tree, size=32, params=["x"]))
 
 
 def test_save_checks_its_input(tmp_path):
