@@ -87,3 +87,9 @@ def test_turntable_frames(tree):
     assert len(images) == 4 and all(f.shape == (64, 64, 4) for f in images)
     assert_same(images[0], sylva.render(tree, "toon", size=64))
     assert not np.array_equal(images[0], images[1])
+
+
+def test_turntable_as_svg(tree):
+    frames = list(sylva.turntable(tree, "pen", frames=2, size=64, format="svg"))
+    assert len(frames) == 2 and all("<svg" in f for f in frames) and frames[0] != frames[1]
+    assert frames[0] == sylva.render(tree, "pen", size=64, format="svg")
