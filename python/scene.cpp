@@ -46,6 +46,15 @@ LoadArgs load_args(const std::string& path, const std::string& foliage, int clus
   return a;
 }
 
+// The loader's warnings as Python's (UserWarning), each the line the CLI prints after
+// "sylva: warning: ".
+void warn(const PyScene& s) {
+  for (const std::string& w : s.frame->scene.report.warning_lines()) {
+    const std::string line = s.options.path + ": " + w;
+    if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+  }
+}
+
 // Loads (as `sylva render` does: load_clustered_scene) and uploads, the GIL released; the
 // context is left current in no thread.
 std::shared_ptr<PyScene> open_scene(const LoadArgs& a, const std::string& source = "") {
@@ -63,6 +72,7 @@ std::shared_ptr<PyScene> open_scene(const LoadArgs& a, const std::string& source
   } catch (const InputError& e) {
     rethrow_load_error(e, a.scene.path);
   }
+  warn(*s);
   return s;
 }
 

@@ -6,7 +6,7 @@ import math
 import pytest
 
 import sylva
-from conftest import cli_error
+from conftest import cli_error, run_cli
 
 
 def raised(kind, call):
@@ -90,3 +90,14 @@ def test_save_checks_its_input(tmp_path):
                                                             str(tmp_path / "x.png")))
     assert "dpi" in raised(ValueError, lambda: sylva.save(np.zeros((4, 4, 4), np.uint8),
                                                           str(tmp_path / "x.png"), dpi=-1))
+
+
+def test_the_loaders_warnings_are_python_warnings(tmp_path):
+    path = tmp_path / "w.off"
+    path.write_text("OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 9\n")
+    with pytest.warns(UserWarning) as caught:
+        sylva.load(str(path))
+    cli = run_cli("render", path, "--size", 16, "-o", tmp_path / "w.png").stderr
+    expected = [line[len("sylva: warning: "):] for line in cli.splitlines()
+                if line.startswith("sylva: warning: ")]
+    assert expected and [str(w.message) for w in caught] == expected
