@@ -83,7 +83,7 @@ py::dict buffers(PyScene& scene, const std::vector<std::string>& names, const py
     camera = frame.setup.camera;
     FoliageRun run;
     run.cache_dir = scene.cache_dir;
-    return render_buffers(frame, *st, run, scene.options.seed, mode, wanted);
+    return render_buffers(frame, *st, run, scene.options.seed, mode, wanted, {}, scene.memos.get());
   });
   py::dict out;
   for (auto& [target, mat] : images) {

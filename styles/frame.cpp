@@ -135,12 +135,14 @@ std::string foliage_settings_key(const FoliageSettings& settings) {
 
 BufferImages render_buffers(Frame& frame, const Style& style, const FoliageRun& run, uint64_t seed,
                             NormalMode mode, TargetMask wanted,
-                            const std::function<void(const RenderGraph&)>& on_done) {
+                            const std::function<void(const RenderGraph&)>& on_done,
+                            FrameMemos* memos) {
   // With the style's picture-scale rho (ink.detail), as its render would use.
-  IlluminationSetup luft =
-      foliage_setup(style.foliage_settings(frame.setup.camera, frame.scene.framing_sphere()), run,
-                    seed, frame.scene);
+  const FoliageSettings settings =
+      style.foliage_settings(frame.setup.camera, frame.scene.framing_sphere());
+  IlluminationSetup luft = foliage_setup(settings, run, seed, frame.scene);
   luft.parameter_names = foliage_parameter_names(style.set());
+  if (memos) luft.memo = foliage_memo(*memos, settings);
   RenderGraph graph;
   const GBufferHandles gb =
       add_buffer_passes(graph, frame, std::move(luft), seed, mode, style.params().ao);
@@ -160,24 +162,29 @@ FrameMemos::FrameMemos()
       samples(std::make_shared<SurfaceSampleMemo>()),
       pieces(std::make_shared<LeafPieceMemo>()) {}
 
+std::shared_ptr<std::shared_ptr<const VertexShading>> foliage_memo(
+    FrameMemos& memos, const FoliageSettings& settings) {
+  const std::string key = foliage_settings_key(settings);
+  const std::lock_guard lock(memos.mutex);
+  auto& slot = memos.foliage[key];
+  if (!slot) {
+    slot = std::make_shared<std::shared_ptr<const VertexShading>>();
+    memos.foliage_order.push_back(key);
+    if (memos.foliage_order.size() > FrameMemos::kFoliageMemos) {
+      memos.foliage.erase(memos.foliage_order.front());
+      memos.foliage_order.erase(memos.foliage_order.begin());
+    }
+  }
+  return memos.foliage[key];
+}
+
 void share_memos(SheetScene& scene, const std::shared_ptr<FrameMemos>& memos) {
   scene.ao_memo = memos->ao;
   scene.samples_memo = memos->samples;
   scene.pieces_memo = memos->pieces;
   scene.foliage = [f = scene.foliage, memos](const FoliageSettings& settings) {
     IlluminationSetup setup = f(settings);
-    const std::string key = foliage_settings_key(settings);
-    const std::lock_guard lock(memos->mutex);
-    auto& slot = memos->foliage[key];
-    if (!slot) {
-      slot = std::make_shared<std::shared_ptr<const VertexShading>>();
-      memos->foliage_order.push_back(key);
-      if (memos->foliage_order.size() > FrameMemos::kFoliageMemos) {
-        memos->foliage.erase(memos->foliage_order.front());
-        memos->foliage_order.erase(memos->foliage_order.begin());
-      }
-    }
-    setup.memo = memos->foliage[key];
+    setup.memo = foliage_memo(*memos, settings);
     return setup;
   };
 }

@@ -61,12 +61,6 @@ StyledRender render_styled(const SheetScene& scene, const Style& style, bool str
 
 // "color,depth,..." as targets; InputError("--buffers", ...) naming an unknown one.
 TargetMask parse_buffer_list(const std::string& list);
-// The targets `wanted` of the frame's view as `style` asks the raster pass for them (its
-// picture-scale rho and AO; the normals of `mode`), as `sylva buffers` writes them, in
-// kAllTargets order. `on_done` sees the graph after it ran.
-BufferImages render_buffers(Frame& frame, const Style& style, const FoliageRun& run, uint64_t seed,
-                            NormalMode mode, TargetMask wanted,
-                            const std::function<void(const RenderGraph&)>& on_done = {});
 
 // What many renders of one frame share, whatever their view and style: the surface samples,
 // the leaf pieces, the AO shells and ray tracer, and the Luft preprocessing of the last
@@ -84,5 +78,18 @@ struct FrameMemos {
 };
 // Makes `scene` read and fill `memos`.
 void share_memos(SheetScene& scene, const std::shared_ptr<FrameMemos>& memos);
+// The slot of `settings`' Luft preprocessing in `memos` (IlluminationSetup::memo), made empty
+// the first time, the oldest dropped beyond kFoliageMemos.
+std::shared_ptr<std::shared_ptr<const VertexShading>> foliage_memo(FrameMemos& memos,
+                                                                   const FoliageSettings& settings);
+
+// The targets `wanted` of the frame's view as `style` asks the raster pass for them (its
+// picture-scale rho and AO; the normals of `mode`), as `sylva buffers` writes them, in
+// kAllTargets order. `on_done` sees the graph after it ran. With `memos`, the Luft
+// preprocessing is read from and kept in them.
+BufferImages render_buffers(Frame& frame, const Style& style, const FoliageRun& run, uint64_t seed,
+                            NormalMode mode, TargetMask wanted,
+                            const std::function<void(const RenderGraph&)>& on_done = {},
+                            FrameMemos* memos = nullptr);
 
 }  // namespace sylva

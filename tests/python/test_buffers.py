@@ -26,7 +26,12 @@ def read_exr(path):
 
 
 def test_buffers_equal_the_cli_exr(tree, tree_glb, tmp_path):
-    got = sylva.buffers(tree, NAMES, style="expressive", size=(96, 80), azimuth=50, id="cluster")
+    view = dict(style="expressive", size=(96, 80), azimuth=50, id="cluster")
+    first = sylva.buffers(tree, NAMES, **view)
+    sylva.render(tree, "expressive", size=(96, 80), azimuth=50)
+    got = sylva.buffers(tree, NAMES, **view)  # the preprocessing kept on the scene
+    for name in NAMES:
+        assert np.array_equal(first[name], got[name]), name
     run_cli("buffers", tree_glb, "--style", "expressive", "--size", "96x80", "--azimuth", 50,
             "--id", "cluster", "--buffers", ",".join(NAMES), "--format", "exr",
             "--cryptomatte", "none", "--out-dir", tmp_path / "b")
