@@ -69,6 +69,9 @@ class GlContext {
   // Makes this context current on the calling thread and its backend's functions the ones the
   // gl* names call there; the context current before it (another backend's too) is released.
   void make_current();
+  // Leaves no context current on the calling thread (when this one is), so that another thread
+  // may make it current next (one scene rendered from several threads: the Python module).
+  void release_current() { release(); }
   const GlInfo& info() const { return m_info; }
   // "EGL surfaceless / llvmpipe (LLVM 15.0.6, 256 bits) / 4.5 (Core Profile) Mesa 22.3.6"
   std::string description() const;
