@@ -3,11 +3,16 @@
 # Both install missing Debian packages first (scripts/setup.sh) and build in Release.
 BUILD ?= build
 ASAN_BUILD ?= build-asan
+EGL_BUILD ?= build-egl-only
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 PREFIX ?= /usr/local
+# ccache where it is installed (scripts/setup.sh --test installs it): the EGL-only build of
+# `make test` then reuses the main build's objects (paths made relative to the checkout).
+LAUNCHER := $(if $(shell command -v ccache),-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR ?= $(CURDIR)
 
-.PHONY: all setup setup-test sylva build test demo gallery line-sheet installable install package sanitize \
+.PHONY: all setup setup-test sylva build test egl-only demo gallery line-sheet installable install package sanitize \
 	fuzz perf golden docs format clean
 
 all: build
@@ -19,7 +24,7 @@ setup-test:
 	@scripts/setup.sh --test
 
 $(BUILD)/build.ninja:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(LAUNCHER) $(CMAKE_FLAGS)
 
 # The program and its plugin only: 43 of the build's 260 steps.
 sylva: setup $(BUILD)/build.ninja
@@ -30,6 +35,15 @@ build: setup-test $(BUILD)/build.ninja
 
 test: build
 	cd $(BUILD) && ctest -LE perf --output-on-failure -j $(JOBS) --timeout 900
+	$(MAKE) egl-only
+
+# The build without OSMesa (Mesa 25.1 removed it): the program alone, configured on its own with
+# -DSYLVA_OSMESA=OFF, then a render and the error for --gl osmesa (tests/install/egl_only.sh).
+egl-only: setup
+	cmake -S . -B $(EGL_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSYLVA_OSMESA=OFF \
+	  -DSYLVA_BUILD_TESTS=OFF -DSYLVA_BUILD_PERF=OFF $(LAUNCHER) $(CMAKE_FLAGS)
+	cmake --build $(EGL_BUILD) -j $(JOBS) --target sylva sylva_codecs
+	tests/install/egl_only.sh $(EGL_BUILD)/cli/sylva
 
 demo: sylva
 	@scripts/demo.sh $(BUILD)/cli/sylva out
@@ -90,4 +104,4 @@ format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(EGL_BUILD) build-fuzz out

@@ -44,29 +44,6 @@ void check_output_path(const std::string& option, const std::string& path,
 
 namespace {
 
-// The raster pass, fed by the Luft preprocessing node when `mode` asks for it; the node is
-// always declared, so compile() is what culls it for the original normals.
-// With ao.model other than none, the AO shell node feeds it too (not declared otherwise).
-GBufferHandles add_scene_passes(RenderGraph& graph, Frame& frame, IlluminationSetup luft,
-                                uint64_t seed, NormalMode mode, const AoSettings& ao) {
-  const ShadingHandle shading = add_foliage_illumination_pass(graph, std::move(luft));
-  RasterSetup setup = frame.setup;
-  if (mode != NormalMode::Original) setup.shading = shading;
-  if (ao_model_of(ao.model) != AoShading::Model::None) {
-    AoSetup as;
-    as.scene = &frame.scene;
-    as.settings = ao;
-    as.seed = seed;
-    setup.ao = add_ao_shading_pass(graph, as);
-  }
-  setup.request.scaled_normals = mode == NormalMode::RealignedScaled;
-  GBufferHandles gb = add_raster_pass(graph, setup);
-  if (ao.model == AoModel::Raytraced)
-    gb.ao = add_raytraced_ao_pass(graph, &frame.scene, gb.position, gb.normal, setup.camera.view,
-                                  ao.rays, seed);
-  return gb;
-}
-
 void write_graph(const std::string& path, const RenderGraph& graph) {
   if (!path.empty()) write_file_atomic(path, graph.to_dot());
 }
@@ -129,18 +106,15 @@ Action add_render_command(CLI::App& app) {
     check_dpi(o->dpi, "--dpi");
     if (!o->graph.empty()) check_output_path("--graph", o->graph, {".dot", ".gv"});
     auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
-    RenderGraph graph;
-    const SheetPlan plan =
-        add_sheet_passes(graph, {style.get()}, sheet_scene(*frame, run, o->scene.seed), vector);
-    graph.compile();
-    write_graph(o->graph, graph);
-    graph.execute();
+    const StyledRender r =
+        render_styled(sheet_scene(*frame, run, o->scene.seed), *style, vector,
+                      [&](const RenderGraph& graph) { write_graph(o->graph, graph); });
     release_frame(frame);
     if (vector)
-      write_vector_drawing(o->out, graph.get<StrokeDrawing>(plan.strokes[0]),
+      write_vector_drawing(o->out, *r.strokes,
                            vector_page(*style, o->view.background == "transparent", o->dpi));
     else
-      write_styled_image(o->out, graph.get<cv::Mat>(plan.outputs[0]), o->dpi, bit_depth);
+      write_styled_image(o->out, r.image, o->dpi, bit_depth);
     std::printf("wrote %s (%dx%d, style %s)\n", o->out.c_str(), o->view.width, o->view.height,
                 style->info().name.c_str());
   };
@@ -188,52 +162,12 @@ CLI::Option* add_buffers_options(CLI::App& cmd, BuffersOpts& o) {
   return normals;
 }
 
-// --buffers "color,depth,..." as targets; InputError naming an unknown one.
-TargetMask parse_buffer_list(const std::string& list) {
-  TargetMask wanted = 0;
-  std::stringstream ss(list);
-  for (std::string name; std::getline(ss, name, ',');) {
-    bool found = false;
-    for (Target t : kAllTargets)
-      if (name == target_name(t)) {
-        wanted |= static_cast<TargetMask>(t);
-        found = true;
-      }
-    if (!found) {
-      std::string allowed;
-      for (Target t : kAllTargets)
-        allowed += (allowed.empty() ? "" : ", ") + std::string(target_name(t));
-      throw InputError("--buffers", "unknown buffer '" + name + "' (allowed: " + allowed + ")");
-    }
-  }
-  if (wanted == 0) throw InputError("--buffers", "name at least one buffer");
-  return wanted;
-}
-
 void check_out_dir(const std::string& out_dir) {
   const fs::path dir(out_dir);
   std::error_code ec;
   const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec) && !fs::is_directory(parent, ec))
     throw InputError("--out-dir", "'" + out_dir + "': parent folder does not exist");
-}
-
-// The raster pass (and what feeds it) with the wanted targets presented, run.
-GBufferHandles run_buffer_graph(RenderGraph& graph, Frame& frame, const Style& style,
-                                const FoliageRun& run, uint64_t seed, NormalMode mode,
-                                TargetMask wanted) {
-  // With the style's picture-scale rho (ink.detail), as its render would use.
-  IlluminationSetup luft =
-      foliage_setup(style.foliage_settings(frame.setup.camera, frame.scene.framing_sphere()), run,
-                    seed, frame.scene);
-  luft.parameter_names = foliage_parameter_names(style.set());
-  const GBufferHandles gb =
-      add_scene_passes(graph, frame, std::move(luft), seed, mode, style.params().ao);
-  for (Target t : kAllTargets)
-    if (has(wanted, t)) graph.present(gb.of(t));
-  graph.compile();
-  graph.execute();
-  return gb;
 }
 
 }  // namespace
@@ -259,16 +193,12 @@ Action add_buffers_command(CLI::App& app) {
     auto frame = prepare_frame(o->scene, o->view, result_cache_dir(o->foliage));
     frame->setup.request.flat_albedo =
         style->params().albedo == AlbedoSource::Flat;  // ids follow --id
-    RenderGraph graph;
-    const GBufferHandles gb =
-        run_buffer_graph(graph, *frame, *style, run, o->scene.seed, mode, wanted);
+    const BufferImages buffers =
+        render_buffers(*frame, *style, run, o->scene.seed, mode, wanted,
+                       [&](const RenderGraph& graph) { write_graph(o->graph, graph); });
     const Camera camera = frame->setup.camera;
     const std::vector<CryptomatteImage> crypto = render_cryptomattes(*frame, mattes);
     release_frame(frame);
-    write_graph(o->graph, graph);
-    BufferImages buffers;
-    for (Target t : kAllTargets)
-      if (has(wanted, t)) buffers.emplace_back(t, graph.get(gb.of(t)));
     write_folder_atomic(o->dir, [&](const std::string& staging) {
       write_buffer_files(staging, buffers, camera, o->files, crypto);
     });

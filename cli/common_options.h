@@ -1,15 +1,13 @@
 // Options shared by the sylva subcommands: scene loading (--foliage, --clusters, --seed),
 // camera and image (--size, --azimuth, --elevation, --distance, --fov, --ortho, --ssaa,
-// --background, --ambient, --ground, --ground-color), and the loader pipeline they drive.
+// --background, --ambient, --ground, --ground-color), the GL backend (--gl, --verbose), filling the library's SceneOptions and
+// ViewOptions (styles/view.h), which parse and check them.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "core/gl/camera.h"
-#include "core/gl/lights.h"
-#include "core/gl/rasterizer.h"
-#include "core/scene/scene.h"
+#include "styles/view.h"
 
 namespace sylva::cli {
 
@@ -20,62 +18,13 @@ inline constexpr const char* kViewGroup = "View options";
 inline constexpr const char* kFoliageGroup = "Foliage illumination options";
 inline constexpr const char* kStyleGroup = "Style options";
 inline constexpr const char* kTurntableGroup = "Turntable options";
+inline constexpr const char* kGlGroup = "GL options";
 
-struct SceneOptions {
-  std::string path;
-  std::string foliage = "auto";
-  int clusters = 0;
-  uint64_t seed = 1;
-};
 void add_scene_options(CLI::App& cmd, SceneOptions& o);
-// Loads, classifies and clusters. Throws InputError on bad input. With `print_warnings`, the
-// scene's warnings (one per kind) go to stderr as "sylva: warning: <file>: <what>" lines.
+// load_clustered_scene. With `print_warnings`, the scene's warnings (one per kind) go to stderr
+// as "sylva: warning: <file>: <what>" lines.
 Scene load_scene_for_cli(const SceneOptions& o, bool print_warnings = true);
 
-struct ViewOptions {
-  std::string size = "1024x1024";
-  OrbitParams orbit;
-  int ssaa = 1;
-  std::string background = "white";
-  float ambient = 0.35f;
-  std::string id_kind = "primitive";
-  std::vector<std::string> lights;  // --light specs; empty = the three-light default
-  // --ground: a ground plane under the scene (core/scene/ground_plane.h); off by default.
-  bool ground = false;
-  // --ground-color: "#RRGGBB" (sRGB, as --background) of the ground plane; a neutral light
-  // grey by default.
-  std::string ground_color = "#b4b4ac";
-  // --lod on|off: levels of detail for the instances of a scene of many plants.
-  std::string lod = "on";
-  // --camera NAME|INDEX: a camera of the file (Scene::cameras, `sylva info` lists them) in
-  // place of the orbit camera; empty = the orbit camera.
-  std::string camera;
-  int width = 0, height = 0;  // parsed from size
-};
 void add_view_options(CLI::App& cmd, ViewOptions& o);
-// Parses and range-checks the view options (size, ssaa, background, ambient, id kind,
-// ground colour).
-void resolve_view_options(ViewOptions& o);
-// The view's camera: the file's camera named by --camera (make_file_camera), else the orbit
-// camera framing the scene with its depth range fitted to the whole scene. Throws
-// InputError("--camera", ...) naming the file's cameras when none matches.
-Camera view_camera(const Scene& scene, const ViewOptions& o);
-// The file camera `name_or_index` names: an index in [0, cameras) or a name (exact).
-const SceneCamera& find_file_camera(const Scene& scene, const std::string& name_or_index);
-
-// Adds the ground plane to the loaded scene when --ground is given.
-void apply_ground_option(Scene& scene, const ViewOptions& o);
-RasterRequest raster_request(const ViewOptions& o);
-Lighting lighting_for(const ViewOptions& o);
-
-// "WxH" or "N" (square); each in [1, 16384]. Throws InputError("--size", ...).
-void parse_size(const std::string& s, int& width, int& height);
-// "dir|point:X,Y,Z[:INTENSITY[:camera|scene]]"; intensity in [0, 10], default 1; camera-fixed
-// by default. Throws InputError("--light", ...).
-Light parse_light(const std::string& spec);
-// "white", "black", "transparent" or "#RRGGBB"; returns linear RGBA.
-glm::vec4 parse_background(const std::string& s);
-// "#RRGGBB" (sRGB); returns linear RGBA, alpha 1. Throws InputError("--ground-color", ...).
-glm::vec4 parse_ground_color(const std::string& s);
 
 }  // namespace sylva::cli

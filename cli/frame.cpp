@@ -1,12 +1,6 @@
 #include "cli/frame.h"
 
-#include <malloc.h>
-
 #include <filesystem>
-
-#include "core/error.h"
-#include "npr/plant_lod.h"
-#include "styles/presets.h"
 
 namespace fs = std::filesystem;
 
@@ -14,27 +8,8 @@ namespace sylva::cli {
 
 std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo,
                                      const std::string& cache_dir) {
-  resolve_view_options(vo);
-  auto f = std::make_unique<Frame>();
-  f->scene = load_scene_for_cli(so);
-  apply_ground_option(f->scene, vo);
-  f->setup.camera = view_camera(f->scene, vo);
-  f->context = create_gl_context();
-  f->rasterizer = std::make_unique<Rasterizer>(*f->context);
-  f->rasterizer->upload(f->scene);
-  if (vo.lod == "on" && f->scene.instanced()) {
-    const ResultCache cache(cache_dir);
-    f->rasterizer->set_lod(f->scene, scene_lods(f->scene, cache_dir.empty() ? nullptr : &cache));
-  }
-  f->setup.rasterizer = f->rasterizer.get();
-  f->setup.lighting = lighting_for(vo);
-  f->setup.request = raster_request(vo);
-  return f;
-}
-
-void release_frame(std::unique_ptr<Frame>& frame) {
-  frame.reset();
-  malloc_trim(0);
+  resolve_view_options(vo);  // bad view options fail before the scene loads
+  return make_frame(load_scene_for_cli(so), vo, cache_dir);
 }
 
 void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets) {
@@ -62,17 +37,6 @@ bool is_vector_path(const std::string& path) {
   for (char& c : ext)
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".svg" || ext == ".pdf";
-}
-
-void require_line_style(const Style& style, const std::string& option) {
-  if (style.has_strokes()) return;
-  std::string names;
-  for (const std::string& n : builtin_preset_names())
-    if (Style(n).has_strokes()) names += (names.empty() ? "" : ", ") + n;
-  throw InputError(option, "style '" + style.info().name +
-                               "' draws no lines, so it has no vector output (.svg, .pdf); "
-                               "styles made of lines: " +
-                               names + ", or a preset inheriting them");
 }
 
 }  // namespace sylva::cli

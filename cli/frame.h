@@ -1,5 +1,6 @@
 // What the rendering commands (render, buffers, compare, turntable) share: the loaded and
-// uploaded scene of one view and the style options (the files: styles/style_files.h).
+// uploaded scene of one view (the library's Frame, styles/frame.h) and the style options (the
+// files: styles/style_files.h).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,29 +12,17 @@
 #include "cli/common_options.h"
 #include "cli/illumination_options.h"
 #include "core/cache/result_cache.h"
-#include "core/gl/raster_pass.h"
+#include "styles/frame.h"
 #include "styles/sheet.h"
 #include "styles/style.h"
 #include "styles/style_files.h"
 
 namespace sylva::cli {
 
-// Everything a frame needs: the loaded scene, a GL context and an uploaded rasteriser.
-struct Frame {
-  Scene scene;
-  std::unique_ptr<GlContext> context;
-  std::unique_ptr<Rasterizer> rasterizer;
-  RasterSetup setup;
-};
-
-// Resolves the view options, loads the scene and uploads it, with its plants' levels of
-// detail (npr/plant_lod.h) unless --lod off, read from or stored in the result cache folder
-// `cache_dir` ("" = none).
+// Resolves the view options, loads the scene (its warnings on stderr) and makes its frame
+// (make_frame) with the result cache folder `cache_dir` ("" = none).
 std::unique_ptr<Frame> prepare_frame(const SceneOptions& so, ViewOptions& vo,
                                      const std::string& cache_dir = default_cache_dir());
-// The graph's results are plain images: drop the scene, the GL objects and the context
-// before encoding files, and hand freed heap back, so peak memory is not their sum.
-void release_frame(std::unique_ptr<Frame>& frame);
 
 // --style NAME|FILE.toml and --set section.key=value (repeatable).
 void add_style_options(CLI::App& cmd, std::string& style, std::vector<std::string>& sets);
@@ -47,9 +36,7 @@ std::unique_ptr<Style> resolve_style(const CLI::App& cmd, const std::string& nam
 // cache and outputs and the seed comes from the scene options.
 SheetScene sheet_scene(const Frame& frame, const FoliageRun& run, uint64_t seed);
 
-// Vector output (.svg, .pdf): whether `path` asks for it; InputError(option, ...) naming the
-// styles that can when `style` draws no strokes.
+// Vector output (.svg, .pdf): whether `path` asks for it.
 bool is_vector_path(const std::string& path);
-void require_line_style(const Style& style, const std::string& option);
 
 }  // namespace sylva::cli

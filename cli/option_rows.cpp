@@ -77,11 +77,9 @@ std::vector<Command> commands_with_options(const CLI::App& app) {
 }
 
 const std::map<std::string, std::string>& shared_groups() {
-  static const std::map<std::string, std::string> g = {{"scene", kSceneGroup},
-                                                       {"view", kViewGroup},
-                                                       {"foliage", kFoliageGroup},
-                                                       {"style", kStyleGroup},
-                                                       {"turntable", kTurntableGroup}};
+  static const std::map<std::string, std::string> g = {
+      {"scene", kSceneGroup}, {"view", kViewGroup},           {"foliage", kFoliageGroup},
+      {"style", kStyleGroup}, {"turntable", kTurntableGroup}, {"gl", kGlGroup}};
   return g;
 }
 

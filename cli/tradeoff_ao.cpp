@@ -91,6 +91,8 @@ void run_ao_study_command(const SceneOptions& scene_options, AoStudyCliOptions& 
   so.camera = view_camera(scene, o.view);
   so.lighting = lighting_for(o.view);
   so.request = raster_request(o.view);
+  const std::unique_ptr<GlContext> context = start_gl(o.view);
+  so.context = context.get();
   AoStudy study;
   {
     ProgressOptions po;

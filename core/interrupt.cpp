@@ -1,5 +1,7 @@
 #include "core/interrupt.h"
 
+#include <unistd.h>
+
 #include <csignal>
 #include <string>
 
@@ -12,6 +14,10 @@ volatile std::sig_atomic_t g_signal = 0;
 extern "C" void on_signal(int signal) {
   g_signal = signal;
   std::signal(signal, SIG_DFL);  // a second one ends the process
+}
+
+extern "C" void on_signal_keep(int signal) {
+  g_signal = signal;
 }
 
 }  // namespace
@@ -37,6 +43,23 @@ int interrupt_signal() {
 
 void check_interrupt() {
   if (g_signal != 0) throw Interrupted(g_signal);
+}
+
+void clear_interrupt() {
+  g_signal = 0;
+}
+
+ScopedInterruptHandler::ScopedInterruptHandler() {
+  if (gettid() != getpid()) return;  // not the main thread
+  struct sigaction action {};
+  action.sa_handler = on_signal_keep;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  m_installed = sigaction(SIGINT, &action, &m_previous) == 0;
+}
+
+ScopedInterruptHandler::~ScopedInterruptHandler() {
+  if (m_installed) sigaction(SIGINT, &m_previous, nullptr);
 }
 
 }  // namespace sylva

@@ -20,19 +20,17 @@
 namespace sylva {
 namespace {
 
-using Mesh = OpenTriMesh;
-
-Mesh to_openmesh(const SurfaceMesh& in) {
-  Mesh m;
+OpenTriMesh to_openmesh(const SurfaceMesh& in) {
+  OpenTriMesh m;
   m.reserve(in.positions.size(), in.indices.size() / 2, in.triangle_count());
-  std::vector<Mesh::VertexHandle> vh;
+  std::vector<OpenTriMesh::VertexHandle> vh;
   vh.reserve(in.positions.size());
   for (const glm::vec3& p : in.positions)
-    vh.push_back(m.add_vertex(Mesh::Point(p.x, p.y, p.z)));
+    vh.push_back(m.add_vertex(OpenTriMesh::Point(p.x, p.y, p.z)));
   for (size_t t = 0; t < in.triangle_count(); ++t) {
     const uint32_t* idx = &in.indices[3 * t];
     if (idx[0] == idx[1] || idx[1] == idx[2] || idx[2] == idx[0]) continue;
-    std::array<Mesh::VertexHandle, 3> f = {vh[idx[0]], vh[idx[1]], vh[idx[2]]};
+    std::array<OpenTriMesh::VertexHandle, 3> f = {vh[idx[0]], vh[idx[1]], vh[idx[2]]};
     if (!can_add_face(m, f) || !m.add_face(f[0], f[1], f[2]).is_valid()) {
       for (auto& v : f)
         v = m.add_vertex(m.point(v));
@@ -42,7 +40,7 @@ Mesh to_openmesh(const SurfaceMesh& in) {
   return m;
 }
 
-void from_openmesh(const Mesh& m, SurfaceMesh& out) {
+void from_openmesh(const OpenTriMesh& m, SurfaceMesh& out) {
   out.positions.clear();
   out.indices.clear();
   out.normals.clear();
@@ -89,14 +87,15 @@ void optimize_surface(SurfaceMesh& mesh, const SurfaceOptimizeOptions& options) 
   mesh.normals.clear();
   if (mesh.indices.empty() || (options.smooth_iterations == 0 && keep == 1.0)) return;
 
-  Mesh m = to_openmesh(mesh);
+  OpenTriMesh m = to_openmesh(mesh);
 
   if (options.smooth_iterations > 0) {
     // Uniform (umbrella) weights, full Laplacian: removes the staircase noise of marching
     // cubes; boundary vertices (where the surface leaves the grid) stay fixed.
-    OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh> smoother(m);
-    smoother.initialize(OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh>::Tangential_and_Normal,
-                        OpenMesh::Smoother::JacobiLaplaceSmootherT<Mesh>::C0);
+    OpenMesh::Smoother::JacobiLaplaceSmootherT<OpenTriMesh> smoother(m);
+    smoother.initialize(
+        OpenMesh::Smoother::JacobiLaplaceSmootherT<OpenTriMesh>::Tangential_and_Normal,
+        OpenMesh::Smoother::JacobiLaplaceSmootherT<OpenTriMesh>::C0);
     smoother.smooth(unsigned(options.smooth_iterations));
   }
 
@@ -105,9 +104,9 @@ void optimize_surface(SurfaceMesh& mesh, const SurfaceOptimizeOptions& options) 
   if (target < n_faces) {
     m.request_face_normals();  // ModNormalFlippingT would log a warning and compute them
     m.update_face_normals();
-    OpenMesh::Decimater::DecimaterT<Mesh> decimater(m);
-    OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
-    OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle no_flips;
+    OpenMesh::Decimater::DecimaterT<OpenTriMesh> decimater(m);
+    OpenMesh::Decimater::ModQuadricT<OpenTriMesh>::Handle quadric;
+    OpenMesh::Decimater::ModNormalFlippingT<OpenTriMesh>::Handle no_flips;
     decimater.add(quadric);
     decimater.add(no_flips);
     decimater.module(quadric).unset_max_err();  // the face count alone stops it

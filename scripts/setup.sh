@@ -9,17 +9,21 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # The compiler and build tools, and the libraries sylva links (GoogleTest and Google Benchmark
-# too: the build's configure step finds them, so `make test` can reuse the demo's build).
+# too: the build's configure step finds them, so `make test` can reuse the demo's build). GL: EGL
+# (libEGL with Mesa's EGL vendor library and its llvmpipe driver, GL/glcorearb.h from
+# libgl-dev) and OSMesa; either alone builds (README "Building");
+# pybind11, Python's headers and numpy for the sylva Python module (python/).
 packages=(
   build-essential cmake ninja-build pkg-config
-  libosmesa6-dev libopencv-dev libavutil-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libosmesa6-dev libopencv-dev libavutil-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenmesh-dev libnanoflann-dev libembree-dev libtomlplusplus-dev libcli11-dev libxxhash-dev
   libpng-dev libjpeg-dev libgif-dev libcairo2-dev libglib2.0-dev libopenexr-dev libmurmurhash-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy
 )
 test_packages=(
-  clang-format clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev ffmpeg nodejs
-  librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools python3-openimageio python3-numpy
+  ccache clang-format clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev ffmpeg nodejs
+  librsvg2-bin poppler-utils libxml2-utils openexr openimageio-tools python3-openimageio python3-numpy python3-pytest
   slurm-wlm munge lintian man-db
 )
 test=0

@@ -262,7 +262,10 @@ namespace {
 class AoStudyRun {
  public:
   AoStudyRun(const Scene& scene, const AoStudyOptions& o)
-      : m_scene(scene), m_o(o), m_context(create_gl_context()), m_rasterizer(*m_context) {
+      : m_scene(scene),
+        m_o(o),
+        m_own_context(o.context ? nullptr : create_gl_context()),
+        m_rasterizer(o.context ? *o.context : *m_own_context) {
     m_rasterizer.upload(scene);
     m_px = classify_pixels(scene, m_rasterizer, o);
     if (m_px.index.empty())
@@ -370,7 +373,7 @@ class AoStudyRun {
 
   const Scene& m_scene;
   const AoStudyOptions& m_o;
-  std::unique_ptr<GlContext> m_context;
+  std::unique_ptr<GlContext> m_own_context;  // when the options bring none
   Rasterizer m_rasterizer;
   Pixels m_px;
   cv::Mat m_ref;

@@ -50,6 +50,9 @@ struct AoStudyOptions {
   // Called after each row is measured (the reference first) with a short description, for
   // progress reports. May be empty.
   std::function<void(const std::string&)> on_run;
+  // The GL context to render in (it must outlive the run); null: one of the environment's
+  // choice (SYLVA_GL, core/gl/gl_context.h).
+  GlContext* context = nullptr;
 };
 
 // Throws InputError (where: models, shells, rays, reference-rays, repeats, ao.alpha_rho)

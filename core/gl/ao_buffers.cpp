@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace sylva {
@@ -20,11 +22,18 @@ struct ShellRecord {
   glm::vec4 transpose[3];
 };
 
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE is at least 2^27 bytes (llvmpipe's); a GPU may allow more.
 template <class T>
-void fill(GLuint buffer, const std::vector<T>& data) {
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+void fill(GLuint buffer, const std::vector<T>& data, const char* what) {
   // An empty buffer still gets a few bytes: a bound block must have storage.
   const size_t bytes = std::max<size_t>(16, data.size() * sizeof(T));
+  GLint limit = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
+  if (limit > 0 && bytes > size_t(limit))
+    throw std::runtime_error("AO of many plants: the " + std::string(what) + " take " +
+                             std::to_string(bytes >> 20) + " MiB, over this GL's " +
+                             std::to_string(limit >> 20) + " MiB shader storage block limit");
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
   glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_STREAM_DRAW);
   if (!data.empty())
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
@@ -93,10 +102,10 @@ void AoBuffers::upload(const AoShading& ao) {
       grid.insert(grid.end(), lists[k].begin(), lists[k].end());
     }
   }
-  fill(m_buffers[0], shells);
-  fill(m_buffers[1], plants);
-  fill(m_buffers[2], crowns);
-  fill(m_buffers[3], grid);
+  fill(m_buffers[0], shells, "shells");
+  fill(m_buffers[1], plants, "plants' shell ranges");
+  fill(m_buffers[2], crowns, "crowns");
+  fill(m_buffers[3], grid, "crown grid's lists");
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 

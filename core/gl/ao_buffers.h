@@ -6,8 +6,7 @@
 // GL context; release() before it goes.
 #pragma once
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
+#include "core/gl/gl_api.h"
 
 #include <array>
 #include <glm/glm.hpp>

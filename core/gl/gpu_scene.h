@@ -3,8 +3,7 @@
 // the current GL context; the caller owns the returned objects.
 #pragma once
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
+#include "core/gl/gl_api.h"
 
 #include <cstdint>
 #include <string>

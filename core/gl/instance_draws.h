@@ -7,8 +7,7 @@
 // in batches of their own with the front face reversed. Runs in the current GL context.
 #pragma once
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
+#include "core/gl/gl_api.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -1,6 +1,9 @@
 #include "core/gl/raster_uniforms.h"
 
 #include <array>
+#include <cmath>
+
+#include "core/error.h"
 
 namespace sylva {
 
@@ -63,6 +66,26 @@ void set_ao_uniforms(const RasterProgram& p, const AoShading& ao) {
   glUniformMatrix3fv(p.ao_inverse, n, GL_FALSE, &ao.inverse[0][0][0]);
   glUniformMatrix3fv(p.ao_transpose, n, GL_FALSE, &ao.transpose[0][0][0]);
   glUniform1fv(p.ao_volume_scale, n, ao.volume_scale.data());
+}
+
+void validate_request(const RasterRequest& request) {
+  if (request.ssaa < 1 || request.ssaa > 4) throw InputError("--ssaa", "must be in [1, 4]");
+  const AoShading& ao = request.ao;
+  if (ao.model == AoShading::Model::Shells) {
+    const size_t n = ao.centres.size();
+    SYLVA_CHECK(n <= size_t(kMaxAoShells) && ao.anchors.size() == n && ao.inverse.size() == n &&
+                    ao.transpose.size() == n && ao.volume_scale.size() == n,
+                "AO shells: 0 to 64 shells, each with centre, anchor, matrices and volume");
+    SYLVA_CHECK(std::isfinite(ao.crown_centre.x) && std::isfinite(ao.crown_centre.y) &&
+                    std::isfinite(ao.crown_centre.z) && std::isfinite(ao.crown_radius) &&
+                    std::isfinite(ao.grass_ground) && std::isfinite(ao.grass_height) &&
+                    std::isfinite(ao.ground_y),
+                "AO crown, grass and ground uniforms must be finite");
+  }
+  if (!(ao.constant >= 0.0f && ao.constant <= 1.0f))
+    throw InputError("ao.constant", "must be in [0, 1]");
+  if (!(std::isfinite(ao.alpha_rho) && ao.alpha_rho >= 0.0f))
+    throw InputError("ao.alpha_rho", "must be finite and >= 0");
 }
 
 }  // namespace sylva

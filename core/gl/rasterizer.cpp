@@ -22,8 +22,6 @@ namespace sylva {
 
 namespace {
 
-constexpr GLsizei kDrawChunkIndices = 3 * 32768;      // indices per draw call (32k triangles)
-constexpr size_t kQueuedTriangles = size_t(1) << 17;  // instanced triangles per glFinish
 constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
@@ -85,7 +83,9 @@ struct Rasterizer::Impl {
   int fbo_width = 0, fbo_height = 0;
   TargetMask fbo_targets = 0;
 
-  explicit Impl(GlContext& c) : context(c) {}
+  DrawLimits limits;
+
+  explicit Impl(GlContext& c) : context(c), limits(draw_limits_for(c.info())) {}
 
   void release_scene() {
     for (GpuMesh& m : meshes) {
@@ -151,6 +151,7 @@ struct Rasterizer::Impl {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       release_fbo();
+      check_gl_errors("raster pass framebuffer");  // a GPU out of memory says so
       throw std::runtime_error("raster pass: framebuffer incomplete (status " +
                                std::to_string(status) + ")");
     }
@@ -222,25 +223,26 @@ struct Rasterizer::Impl {
     return p;
   }
 
-  // llvmpipe shades every vertex a draw call references into one buffer (~100 bytes a
-  // vertex); chunks bound that buffer instead of letting it grow with the mesh.
-  // Instanced: llvmpipe bins the triangles of many draws ahead of its rasteriser threads (up
-  // to 64 scenes, each up to tens of MB) when they fall behind, so the draws of a forest go in
-  // pieces of at most kQueuedTriangles and wait for the rasteriser in between (glFinish):
-  // the binned data stays bounded whatever the number of instances.
+  // In pieces of at most `limits` (draw_limits_for): the chunks and waits a CPU renderer
+  // needs to keep its memory bounded; with no limits, one draw per mesh and batch.
   void draw_chunks(const GpuMesh& m, GLsizei instance_count) {
-    for (GLsizei first = 0; first < m.index_count; first += kDrawChunkIndices) {
-      const GLsizei count = std::min(kDrawChunkIndices, m.index_count - first);
+    const auto chunk_indices = GLsizei(
+        limits.chunk_triangles ? std::min<size_t>(3 * limits.chunk_triangles, size_t(1) << 30)
+                               : size_t(std::max(m.index_count, 1)));
+    const size_t queue_limit = limits.queued_triangles;
+    for (GLsizei first = 0; first < m.index_count; first += chunk_indices) {
+      const GLsizei count = std::min(chunk_indices, m.index_count - first);
       const void* offset = reinterpret_cast<const void*>(size_t(first) * sizeof(uint32_t));
       if (instance_count == 0) {
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, offset);
         continue;
       }
       const size_t triangles = size_t(count / 3);
-      const auto per_draw = GLsizei(std::max<size_t>(1, kQueuedTriangles / triangles));
+      const auto per_draw =
+          queue_limit ? GLsizei(std::max<size_t>(1, queue_limit / triangles)) : instance_count;
       for (GLsizei i = 0; i < instance_count; i += per_draw) {
         const GLsizei n = std::min(per_draw, instance_count - i);
-        if (queued_triangles + triangles * size_t(n) > kQueuedTriangles) {
+        if (queue_limit && queued_triangles + triangles * size_t(n) > queue_limit) {
           glFinish();
           queued_triangles = 0;
         }
@@ -374,6 +376,7 @@ void Rasterizer::upload(const Scene& scene) {
       if (scene.instanced()) s.plant_meshes[p].push_back(s.meshes.size() - 1);
     }
   }
+  check_gl_errors("scene upload");
 }
 
 void Rasterizer::set_lod(const Scene& scene, const std::vector<PlantLod>& lods) {
@@ -432,24 +435,8 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   SYLVA_CHECK(request.targets != 0 && (request.targets & ~kAllTargetsMask) == 0,
               "raster request needs at least one known target");
   SYLVA_CHECK(camera.width >= 1 && camera.height >= 1, "camera without a size");
-  if (request.ssaa < 1 || request.ssaa > 4) throw InputError("--ssaa", "must be in [1, 4]");
+  validate_request(request);
   validate_lighting(lighting);
-  const AoShading& ao = request.ao;
-  if (ao.model == AoShading::Model::Shells) {
-    const size_t n = ao.centres.size();
-    SYLVA_CHECK(n <= size_t(kMaxAoShells) && ao.anchors.size() == n && ao.inverse.size() == n &&
-                    ao.transpose.size() == n && ao.volume_scale.size() == n,
-                "AO shells: 0 to 64 shells, each with centre, anchor, matrices and volume");
-    SYLVA_CHECK(std::isfinite(ao.crown_centre.x) && std::isfinite(ao.crown_centre.y) &&
-                    std::isfinite(ao.crown_centre.z) && std::isfinite(ao.crown_radius) &&
-                    std::isfinite(ao.grass_ground) && std::isfinite(ao.grass_height) &&
-                    std::isfinite(ao.ground_y),
-                "AO crown, grass and ground uniforms must be finite");
-  }
-  if (!(ao.constant >= 0.0f && ao.constant <= 1.0f))
-    throw InputError("ao.constant", "must be in [0, 1]");
-  if (!(std::isfinite(ao.alpha_rho) && ao.alpha_rho >= 0.0f))
-    throw InputError("ao.alpha_rho", "must be finite and >= 0");
   s.context.make_current();
 
   GLint max_size = 0;
@@ -482,11 +469,22 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   glActiveTexture(GL_TEXTURE0);
-  if (s.instances.instanced()) s.ao_buffers.upload(ao);
+  if (s.instances.instanced()) s.ao_buffers.upload(request.ao);
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  return s.read_back(request.targets, request.ssaa, request.id_samples);
+  GBuffer out = s.read_back(request.targets, request.ssaa, request.id_samples);
+  check_gl_errors("raster pass at " + std::to_string(width) + "x" + std::to_string(height));
+  return out;
+}
+
+DrawLimits draw_limits_for(const GlInfo& info) {
+  if (!info.software) return {};
+  return {32768, size_t(1) << 17};
+}
+
+void Rasterizer::set_draw_limits(const DrawLimits& limits) {
+  m_impl->limits = limits;
 }
 
 TargetMask Rasterizer::last_allocated_targets() const {

@@ -45,6 +45,19 @@ struct VertexShading {
   bool oriented_foliage = false;
 };
 
+// How the draws are split. llvmpipe shades every vertex a draw call references into one buffer
+// (~100 bytes a vertex), and bins the triangles of many instanced draws ahead of its rasteriser
+// threads (up to 64 scenes, each up to tens of MB) when they fall behind: on a CPU renderer a
+// mesh is drawn in chunks, and the draws of a forest wait for the rasteriser (glFinish) every
+// `queued_triangles`, so memory stays bounded whatever the mesh or the number of instances. A
+// GPU driver bounds its own queues: one draw per mesh and batch, no waits. 0 = no limit. The
+// pictures are the same either way (the same triangles in the same order).
+struct DrawLimits {
+  size_t chunk_triangles = 0;   // triangles per draw call (the CPU renderer's: 32768)
+  size_t queued_triangles = 0;  // instanced triangles between waits (the CPU renderer's: 2^17)
+};
+DrawLimits draw_limits_for(const GlInfo& info);
+
 class Rasterizer {
  public:
   // The context must outlive the Rasterizer; GL objects are created in it on upload/render.
@@ -66,6 +79,9 @@ class Rasterizer {
   // when they were not replaced).
   void restore_vertex_shading();
   GBuffer render(const Camera& camera, const Lighting& lighting, const RasterRequest& request);
+
+  // Replaces the limits draw_limits_for(context.info()) chose (tests of the GPU's way on llvmpipe).
+  void set_draw_limits(const DrawLimits& limits);
 
   // Targets allocated by the most recent render (for tests of the render graph's culling).
   TargetMask last_allocated_targets() const;

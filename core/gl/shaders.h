@@ -7,8 +7,7 @@
 // which lets llvmpipe test depth before shading.
 #pragma once
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
+#include "core/gl/gl_api.h"
 
 #include <string>
 

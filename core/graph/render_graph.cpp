@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/interrupt.h"
+
 namespace sylva {
 
 bool PassContext::wanted(ResourceRef resource) const {
@@ -137,6 +139,7 @@ void RenderGraph::execute(const std::function<void(const std::string&)>& after_p
   for (size_t p = 0; p < m_passes.size(); ++p) {
     Pass& pass = m_passes[p];
     if (!pass.live) continue;
+    check_interrupt();  // a long render stops between passes after SIGINT (core/interrupt.h)
     PassContext ctx(*this, static_cast<int>(p));
     pass.run(ctx);
     for (int w : pass.writes) {

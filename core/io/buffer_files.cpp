@@ -16,8 +16,6 @@ void check_buffer_files(const BufferFiles& files) {
   parse_exr_compression(files.compression, "--compression");
 }
 
-namespace {
-
 std::string camera_json(const Camera& c) {
   auto mat = [](const glm::mat4& m) {
     nlohmann::json rows = nlohmann::json::array();  // row-major: rows[i][j] = m[j][i]
@@ -36,6 +34,8 @@ std::string camera_json(const Camera& c) {
                       {"matrix_layout", "row-major, column vectors: p_view = view * p_world"}};
   return j.dump(2) + "\n";
 }
+
+namespace {
 
 // A buffer as its TIFF holds it: ids as float32 (exact below 2^24), and 3-channel (x, y, z)
 // buffers in the file's R, G, B for every reader (OpenCV writes a Mat's channel 0 as blue).

@@ -40,6 +40,10 @@ void check_buffer_files(const BufferFiles& files);
 // Rendered buffers (as core/gl/gbuffer.h types them), in kAllTargets order.
 using BufferImages = std::vector<std::pair<Target, cv::Mat>>;
 
+// camera.json: the image size, near and far planes, eye, and the view and projection matrices
+// (row-major rows, column vectors: p_view = view * p_world).
+std::string camera_json(const Camera& camera);
+
 // Writes the buffers into `dir` (which exists), each file atomically: color.png, albedo.png,
 // <name>.tiff and <name>.preview.png, or buffers.exr (with the Cryptomatte layers); then
 // camera.json.

@@ -3,7 +3,7 @@
 // ranges the options document.
 #include <cmath>
 
-#include "cli/common_options.h"
+#include "styles/view.h"
 #include "tests/fuzz/fuzz_support.h"
 
 namespace {
@@ -20,12 +20,12 @@ void parse(uint8_t which, const std::string& text) {
   switch (which % 4) {
     case 0: {
       int w = 0, h = 0;
-      sylva::cli::parse_size(text, w, h);
+      sylva::parse_size(text, w, h);
       if (w < 1 || h < 1 || w > 16384 || h > 16384) fail("--size out of range: " + text);
       break;
     }
     case 1: {
-      const sylva::Light l = sylva::cli::parse_light(text);
+      const sylva::Light l = sylva::parse_light(text);
       const glm::vec3& v = l.vector;
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         fail("--light vector not finite: " + text);
@@ -35,10 +35,10 @@ void parse(uint8_t which, const std::string& text) {
       break;
     }
     case 2:
-      if (!unit_colour(sylva::cli::parse_background(text))) fail("--background: " + text);
+      if (!unit_colour(sylva::parse_background(text))) fail("--background: " + text);
       break;
     default:
-      if (!unit_colour(sylva::cli::parse_ground_color(text))) fail("--ground-color: " + text);
+      if (!unit_colour(sylva::parse_ground_color(text))) fail("--ground-color: " + text);
   }
 }
 

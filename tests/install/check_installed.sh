@@ -48,4 +48,18 @@ LC_ALL=C.UTF-8 man -l "$man" 2>/dev/null | grep -q -- '--frame-range' || fail "t
 for style in standard expressive ink pen toon watercolor blobs; do
   [ -f "$prefix/share/sylva/presets/$style.toml" ] || fail "no preset $style.toml"
 done
-echo "check_installed: $prefix is complete (PNG, TIFF, MP4, man page, presets)"
+
+# The Python module (when built): importable from its installed folder alone, it renders, and it
+# finds the installed codecs plugin for TIFF.
+module=$(find "$prefix/lib" -name '_sylva*.so' | head -n 1)
+if [ -n "$module" ]; then
+  PREFIX=$prefix PYTHONPATH=$(dirname "$(dirname "$module")") /usr/bin/python3 -c '
+import os, sylva
+img = sylva.render(sylva.load("tree.glb"), "toon", size=64)
+assert img.shape == (64, 64, 4), img.shape
+sylva.save(img, "py.tiff")
+assert os.environ["SYLVA_CODECS"].startswith(os.environ["PREFIX"]), os.environ["SYLVA_CODECS"]
+' || fail "the installed Python module does not render"
+  [ "$(head -c 4 py.tiff | od -An -tx1 | tr -d ' \n')" = 49492a00 ] || fail "py.tiff is not a TIFF"
+fi
+echo "check_installed: $prefix is complete (PNG, TIFF, MP4, man page, presets, Python)"

@@ -13,7 +13,7 @@ deb=$(find "$work/out" -maxdepth 1 -name 'sylva_*.deb')
 [ -n "$deb" ] || { echo "deb_test: cpack made no .deb"; cat "$work/cpack.log"; exit 1; }
 dpkg-deb --info "$deb"
 depends=$(dpkg-deb --field "$deb" Depends)
-for lib in libc6 libosmesa6 libopencv-core406 libopenexr-3-1-30 libembree3-3; do
+for lib in libc6 libegl1 libosmesa6 libopencv-core406 libopenexr-3-1-30 libembree3-3 python3-numpy; do
   [[ $depends == *"$lib"* ]] || { echo "deb_test: Depends lacks $lib: $depends"; exit 1; }
 done
 lintian --no-tag-display-limit "$deb" >"$work/lintian.txt" 2>&1 || true

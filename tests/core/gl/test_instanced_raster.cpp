@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <opencv2/core.hpp>
+#include <optional>
 
 #include "core/gl/instance_draws.h"
 #include "core/gl/rasterizer.h"
@@ -128,6 +129,27 @@ TEST(InstancedRaster, InstancesOutOfViewAreNotDrawnAndChangeNothing) {
   EXPECT_EQ(drawn, 4u);
   EXPECT_EQ(differing(before.color, after.color, 0), 0.0);
   EXPECT_EQ(differing(before.id, after.id, 0), 0.0);
+}
+
+// The draws of a forest in pieces and with waits between them (a CPU renderer's limits), in
+// one piece per batch (a GPU's), or in tiny pieces: the same triangles in the same order.
+TEST(InstancedRaster, DrawLimitsChangeNoPixel) {
+  const Scene s = plant_scene(true);
+  const Camera cam = make_orbit_camera(s.framing_sphere(), OrbitParams{}, 160, 160);
+  const RasterRequest q = request_of(Target::Color | Target::Depth | Target::Id, IdKind::Cluster);
+  const auto draw = [&](std::optional<DrawLimits> limits) {
+    Rasterizer r(gl());
+    if (limits) r.set_draw_limits(*limits);
+    r.upload(s);
+    return r.render(cam, Lighting::three_point(), q);
+  };
+  const GBuffer cpu = draw(std::nullopt);
+  for (const DrawLimits& limits : {DrawLimits{}, DrawLimits{100, 300}, DrawLimits{7, 20}}) {
+    const GBuffer other = draw(limits);
+    EXPECT_EQ(differing(cpu.color, other.color, 0), 0.0) << limits.chunk_triangles;
+    EXPECT_EQ(differing(cpu.depth, other.depth, 0), 0.0) << limits.chunk_triangles;
+    EXPECT_EQ(differing(cpu.id, other.id, 0), 0.0) << limits.chunk_triangles;
+  }
 }
 
 // Every level of `s`'s one plant: the crown's first sphere (its first third of triangles) and

@@ -1,11 +1,13 @@
 // The render graph culls passes and resources nobody presents, runs the rest in order,
 // tells multi-output passes which outputs are wanted, frees inputs after their last use, and
-// shows an observer what each pass wrote.
+// shows an observer what each pass wrote; a SIGINT stops it between passes.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <string>
 
 #include "core/graph/render_graph.h"
+#include "core/interrupt.h"
 
 namespace sylva {
 namespace {
@@ -172,6 +174,27 @@ TEST(RenderGraph, HandlesOfTheWrongTypeAreRefusedWhereThePassIsAdded) {
   g.present(out);
   g.execute();
   EXPECT_FLOAT_EQ(g.get(out), 3.5f);
+}
+
+// A SIGINT during a pass (under ScopedInterruptHandler, as the Python module renders) stops the
+// graph before its next pass; the flag, once cleared, lets the next render run.
+TEST(RenderGraph, AnInterruptStopsBetweenPasses) {
+  Fixture f;
+  f.g.present(f.toon_out);
+  f.g.present(f.edges_out);
+  f.g.compile();
+  {
+    const ScopedInterruptHandler sigint;
+    EXPECT_THROW(f.g.execute([](const std::string& pass) {
+      if (pass == "raster") std::raise(SIGINT);
+    }),
+                 Interrupted);
+    EXPECT_EQ(f.log, "raster;");
+    EXPECT_EQ(interrupt_signal(), SIGINT);
+    clear_interrupt();
+  }
+  EXPECT_EQ(interrupt_signal(), 0);
+  EXPECT_NO_THROW(check_interrupt());
 }
 
 }  // namespace
