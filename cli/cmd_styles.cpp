@@ -15,10 +15,10 @@ Action add_styles_command(CLI::App& app) {
   cmd->add_option("preset", *name, "A built-in preset or a .toml file");
   return [name] {
     if (name->empty()) {
-      std::printf("%-12s %-10s %s\n", "style", "builder", "description");
+      std::printf("%-13s %-15s %s\n", "style", "builder", "description");
       for (const std::string& n : builtin_preset_names()) {
         const Style s(n);
-        std::printf("%-12s %-10s %s\n", n.c_str(), s.info().builder.c_str(),
+        std::printf("%-13s %-15s %s\n", n.c_str(), s.builder_text().c_str(),
                     s.info().description.c_str());
       }
       std::printf(
@@ -30,9 +30,9 @@ Action add_styles_command(CLI::App& app) {
     std::string chain;
     for (const std::string& c : s.info().chain)
       chain += (chain.empty() ? "" : " -> ") + c;
-    std::printf("%s (%s): %s\nbuilder %s; presets applied: %s\n\n", s.info().name.c_str(),
-                s.info().source.c_str(), s.info().description.c_str(), s.info().builder.c_str(),
-                chain.c_str());
+    std::printf("%s (%s): %s\n%s %s; presets applied: %s\n\n", s.info().name.c_str(),
+                s.info().source.c_str(), s.info().description.c_str(),
+                s.layers().empty() ? "builder" : "layers", s.builder_text().c_str(), chain.c_str());
     std::printf("%-24s %-12s %-12s %-40s %s\n", "key", "value", "default", "allowed", "meaning");
     for (const ParamSpec& p : s.set().specs())
       std::printf("%-24s %-12s %-12s %-40s %s\n", p.key.c_str(), s.set().value_text(p.key).c_str(),

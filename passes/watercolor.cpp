@@ -407,7 +407,7 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
   if (p.gradation > 0.0f) s.soft_luminance = smoothed_luminance(s, in.id != 0);
-  const bool wood = in.samples && in.wood_cluster != 0;
+  const bool wood = in.wood_cluster != 0;
   const cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
                                 wood ? seen_wood(in.id, in.wood_cluster) : cv::Mat());
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
@@ -489,8 +489,8 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                    if (res.samples.valid()) {
                      in.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(res.samples);
                      in.camera = res.camera;
-                     in.wood_cluster = res.wood_cluster;
                    }
+                   in.wood_cluster = res.wood_cluster;
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

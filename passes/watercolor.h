@@ -119,8 +119,9 @@ struct WatercolorImages {
   // washes' shapes and order then come from the id buffer and its depths.
   std::shared_ptr<const SurfaceSamples> samples;
   Camera camera;
-  // The cluster id of trunk and branches (0 = none): with samples, the wood's wash lies under
-  // the leaves' washes, as a painter lays the trunk under the crown.
+  // The cluster id of trunk and branches (0 = none): the wood's wash lies under the leaves'
+  // washes, as a painter lays the trunk under the crown, and wherever the id buffer shows the
+  // wood the leaves' washes leave it bare.
   uint32_t wood_cluster = 0;
 };
 

@@ -324,6 +324,20 @@ void Style::add_layers(const std::string& name_or_path, const std::vector<std::s
     m_layers.push_back(std::move(layer));
   }
   m_params = primary().m_params;  // the G-buffers follow the line layer
+  // The first layer's own sections as it reads them, so the stack's parameters list each key
+  // as the layer that uses it has it (a builder reads no other builder's section).
+  const StyleParams& first = m_layers[0]->m_params;
+  m_params.toon = first.toon;
+  m_params.watercolor = first.watercolor;
+  m_params.blobs = first.blobs;
+}
+
+std::string Style::builder_text() const {
+  if (m_layers.empty()) return m_info.builder;
+  std::string text;
+  for (const auto& layer : m_layers)
+    text += (text.empty() ? "" : "+") + layer->m_info.builder;
+  return text;
 }
 
 const Style& Style::primary() const {

@@ -125,6 +125,8 @@ class Style {
   Style& operator=(const Style&) = delete;
 
   const PresetInfo& info() const { return m_info; }
+  // The builder, or a stack's layers' builders: "watercolor+ink".
+  std::string builder_text() const;
   const BuilderTraits& traits() const;  // the traits of the preset's builder
   StyleParams& params() { return m_params; }
   const StyleParams& params() const { return m_params; }

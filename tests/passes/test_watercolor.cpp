@@ -33,6 +33,7 @@ WatercolorParams plain_params() {
   p.wobble = 0;
   p.edge_darkening = 0;
   p.detail = 0;
+  p.gradation = 0;
   p.paper_color = glm::vec3(1.0f);
   return p;
 }
@@ -291,6 +292,95 @@ TEST(Watercolor, DetailFollowsTheBlurredDepthTest) {
   cv::meanStdDev(watercolor(s.img, kIdentity, p)(inner), m, some);
   EXPECT_LT(none[1], 1.0);
   EXPECT_GT(some[1], 3.0 * none[1] + 2.0);
+}
+
+TEST(Watercolor, RimsDarkenAtTheOuterEdgeAndAtDepthStepsOnly) {
+  // Two overlapping discs: the front one's rim over the back one darkens only when their depth
+  // step exceeds rim_step of the depth range; the outer edge darkens either way.
+  Scene s = empty_scene({240, 200});
+  add_disc(s, {80, 100}, 60, 1, {0.2f, 0.5f, 0.3f}, 6.0f);   // back
+  add_disc(s, {160, 100}, 60, 2, {0.2f, 0.5f, 0.3f}, 3.0f);  // front
+  WatercolorParams p = plain_params();
+  p.blur = 12;
+  p.edge_darkening = 1;
+  p.rim_step = 0;
+  const cv::Mat every = watercolor(s.img, kIdentity, p);
+  p.rim_step = 1;
+  const cv::Mat outer = watercolor(s.img, kIdentity, p);
+  auto darkest = [](const cv::Mat& out, int x0, int x1) {
+    float g = 255;
+    for (int x = x0; x < x1; ++x)
+      g = std::min(g, grey(out, 100, x));
+    return g;
+  };
+  // The front disc's edge over the back disc (x = 100) and its outer edge (x = 220).
+  EXPECT_LT(darkest(every, 94, 108), darkest(outer, 94, 108) - 8.0f);
+  EXPECT_NEAR(darkest(every, 205, 232), darkest(outer, 205, 232), 1.0f);
+  EXPECT_LT(darkest(outer, 205, 232), grey(outer, 100, 160) - 8.0f);
+}
+
+TEST(Watercolor, GradationFollowsTheLightInsideAWash) {
+  // One disc lit from the right: its shaded colour brightens with x. Flat at gradation 0,
+  // darker on the left than on the right at 1.
+  Scene s = empty_scene({200, 200});
+  add_disc(s, {100, 100}, 70, 1, {0.2f, 0.5f, 0.3f}, 4.0f);
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x)
+      if (s.img.id.at<int32_t>(y, x) == 1) {
+        const float lit = 0.3f + 0.7f * float(x - 30) / 140.0f;
+        const cv::Vec3f c(0.2f * lit, 0.5f * lit, 0.3f * lit);
+        set_pixel(s, x, y, 1, c, s.img.depth.at<float>(y, x));
+      }
+  WatercolorParams p = plain_params();
+  p.blur = 10;
+  const cv::Mat flat = watercolor(s.img, kIdentity, p);
+  p.gradation = 1;
+  const cv::Mat graded = watercolor(s.img, kIdentity, p);
+  EXPECT_NEAR(grey(flat, 100, 60), grey(flat, 100, 140), 1.0f);
+  EXPECT_LT(grey(graded, 100, 60), grey(graded, 100, 140) - 20.0f);
+}
+
+TEST(Watercolor, TheWoodIsPaintedWhereverItIsSeen) {
+  // A trunk (id 99) behind a sparse crown of three leaves: the blurred leaf washes would close
+  // the gaps between the leaves; the trunk is painted bare of them wherever it is seen.
+  Scene s = empty_scene({200, 240});
+  const cv::Vec3f bark(0.05f, 0.12f, 0.25f), leaf(0.08f, 0.35f, 0.1f);  // BGR linear
+  add_rect(s, cv::Rect(85, 0, 30, 240), 99, bark, 10.0f);
+  for (int i = 0; i < 3; ++i)
+    add_disc(s, {100.0f, 40.0f + 80.0f * float(i)}, 34, 1 + i, leaf, 6.0f);
+  WatercolorParams p = plain_params();
+  p.blur = 20;
+  const cv::Point gap(100, 80);  // on the trunk, between the first two leaves
+  ASSERT_EQ(s.img.id.at<int32_t>(gap), 99);
+  auto reddish = [&](const cv::Mat& out) {
+    const cv::Vec4b v = out.at<cv::Vec4b>(gap);
+    return float(v[2]) - float(v[1]);  // R - G: bark > 0, leaves < 0
+  };
+  s.img.wood_cluster = 0;  // the trunk a wash like any other: painted over by the leaves
+  const float plain = reddish(watercolor(s.img, kIdentity, p));
+  s.img.wood_cluster = 99;
+  const float wood = reddish(watercolor(s.img, kIdentity, p));
+  EXPECT_LT(plain, 0.0f);
+  EXPECT_GT(wood, 10.0f);
+}
+
+TEST(Watercolor, LeafDetailFadesContinuouslyWithDepth) {
+  // Luft & Deussen's blurred depth test: a leaf moving out of its clump shows its own shade
+  // gradually, with no jump between two nearby depths.
+  std::vector<float> g;
+  for (int i = 0; i <= 16; ++i) {
+    Scene s = empty_scene({160, 160});
+    add_disc(s, {80, 80}, 50, 1, {0.2f, 0.5f, 0.3f}, 5.0f);
+    add_rect(s, cv::Rect(74, 74, 12, 12), 1, {0.02f, 0.06f, 0.03f}, 5.2f - 0.06f * float(i));
+    WatercolorParams p = plain_params();
+    p.blur = 15;
+    p.detail = 1;
+    g.push_back(grey(watercolor(s.img, kIdentity, p), 80, 80));
+  }
+  const float total = std::abs(g.front() - g.back());
+  EXPECT_GT(total, 10.0f);
+  for (size_t i = 1; i < g.size(); ++i)
+    EXPECT_LT(std::abs(g[i] - g[i - 1]), 0.35f * total) << i;
 }
 
 TEST(Watercolor, GraphPassReadsOnlyWhatItUses) {
