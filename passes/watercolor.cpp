@@ -409,7 +409,7 @@ cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
   if (p.gradation > 0.0f) s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;
   const cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
-                                wood ? seen_wood(in.id, in.wood_cluster) : cv::Mat());
+                                wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
   const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
   const cv::Mat relief = paper_relief(paper, s.size);

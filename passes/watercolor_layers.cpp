@@ -288,15 +288,26 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
   });
   cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
   cv::Mat bark = wood_seen.empty() ? density : cv::Mat(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
+  const Layer* wood_layer = nullptr;
   for (size_t k = 0; k < painted.size(); ++k) {
     const LayerOut& L = painted[k];
-    cv::Mat dst = (wood != 0 && sorted[k].id == wood ? bark : density)(L.roi);
+    const bool is_wood = wood != 0 && sorted[k].id == wood;
+    if (is_wood) wood_layer = &sorted[k];
+    cv::Mat dst = (is_wood ? bark : density)(L.roi);
     cv::add(dst, L.density, dst);
   }
   if (wood_seen.empty()) return density;
   cv::Mat open, seen3;
   cv::merge(std::vector<cv::Mat>{wood_seen, wood_seen, wood_seen}, seen3);
   cv::subtract(cv::Scalar::all(1.0), seen3, open);
+  if (wood_layer) {
+    // Twigs the wood's wash (its trunk and main branches) leaves out are painted in its
+    // pigment too, where they are seen: no streak of bare paper through the crown.
+    cv::Vec3f d;
+    for (int ch = 0; ch < 3; ++ch)
+      d[ch] = to_density(*s.srgb, std::min(wood_layer->pigment_display[ch], 1.0f));
+    bark = cv::max(bark, seen3.mul(cv::Scalar(d[0], d[1], d[2])));
+  }
   return bark + density.mul(open);
 }
 

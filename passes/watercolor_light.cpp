@@ -1,6 +1,7 @@
 #include "passes/watercolor_light.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
@@ -61,10 +62,15 @@ cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered) {
   return out;
 }
 
-// Where the id buffer shows the wood cluster, a little softened (CV_32FC1 in [0, 1]).
-cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster) {
-  cv::Mat seen;
-  cv::Mat(id == int32_t(wood_cluster)).convertTo(seen, CV_32F, 1.0 / 255.0);
+// Where the id buffer shows the wood cluster at least 3 px wide at 1024 px (an opening: the
+// trunk and branches a painter paints, not the pixel-thin twigs that come and go as the view
+// turns), a little softened (CV_32FC1 in [0, 1]).
+cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale) {
+  cv::Mat mask = id == int32_t(wood_cluster), seen;
+  const int r = std::max(1, int(std::lround(1.5 * scale)));
+  cv::morphologyEx(mask, mask, cv::MORPH_OPEN,
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
+  mask.convertTo(seen, CV_32F, 1.0 / 255.0);
   return blur(seen, 0.7f);
 }
 

@@ -20,7 +20,8 @@ cv::Mat rim_allowed(const Shared& s, const std::vector<Layer>& sorted, float rim
 // non-zero) only, with a Gaussian of twice the wash blur (at least 3 px).
 cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
 
-// Where the id buffer (CV_32SC1) shows the wood cluster, softened by 0.7 px: CV_32FC1 in [0, 1].
-cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster);
+// Where the id buffer (CV_32SC1) shows the wood cluster at least 3 px wide at 1024 px (`scale`
+// = the image's size over 1024, reference_scale), softened by 0.7 px: CV_32FC1 in [0, 1].
+cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale);
 
 }  // namespace sylva::watercolor_internal

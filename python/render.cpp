@@ -15,10 +15,15 @@ std::string style_name(const py::object& style) {
   return py::module_::import("os").attr("fspath")(style).cast<std::string>();
 }
 
-void check_gl(const py::object& gl) {
-  if (gl.is_none() || gl.cast<std::string>() == "osmesa") return;
-  throw InputError("gl",
-                   "unknown GL backend '" + gl.cast<std::string>() + "' (this build has: osmesa)");
+// The scene's GL backend is chosen when it loads ($SYLVA_GL, else auto: EGL, then OSMesa);
+// `gl` may name it (or auto), and names anything else as an error.
+void check_gl(const PyScene& scene, const py::object& gl) {
+  if (gl.is_none()) return;
+  const GlChoice choice = parse_gl_choice(gl.cast<std::string>(), "gl");
+  const GlBackend used = scene.frame->context->info().backend;
+  if (choice.backend == GlBackend::Auto || choice.backend == used) return;
+  throw InputError("gl", std::string("this scene renders with ") + gl_backend_name(used) +
+                             ", chosen when it was loaded (set SYLVA_GL before sylva.load)");
 }
 
 // Row-major rows of a glm (column-major) matrix: rows[i][j] = m[j][i], so that
@@ -47,7 +52,7 @@ py::dict camera_dict(const Camera& c) {
 
 py::object render(PyScene& scene, const py::object& style, const py::object& params,
                   const std::string& format, const py::object& gl, const py::kwargs& view) {
-  check_gl(gl);
+  check_gl(scene, gl);
   if (format != "rgba" && format != "svg")
     throw InputError("format", "expected 'rgba' (an image) or 'svg', got '" + format + "'");
   const std::unique_ptr<Style> st = make_style(style_name(style), params);

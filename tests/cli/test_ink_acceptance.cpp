@@ -91,7 +91,9 @@ TEST_P(InkAcceptance, DepictsTheTreeAtEveryScale) {
   EXPECT_GE(small_in_large, 0.85);
   EXPECT_GE(large_in_small, 0.85);
   // pen's hatching where the crown is dark, where its light varies (as the tone floor).
-  if (pen.tone_range >= 0.03) EXPECT_GE(tone.dark, 2.0 * tone.bright);
+  if (pen.tone_range >= 0.03) {
+    EXPECT_GE(tone.dark, 2.0 * tone.bright);
+  }
 }
 
 // Issue "Vector line art": the ink SVG and PDF of each tree at 1024², rendered by rsvg-convert
