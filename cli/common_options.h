@@ -1,7 +1,7 @@
 // Options shared by the sylva subcommands: scene loading (--foliage, --clusters, --seed),
 // camera and image (--size, --azimuth, --elevation, --distance, --fov, --ortho, --ssaa,
-// --background, --ambient, --ground, --ground-color), the GL backend (--gl, --verbose), filling the library's SceneOptions and
-// ViewOptions (styles/view.h), which parse and check them.
+// --background, --ambient, --ground, --ground-color), the GL backend (--gl, --verbose), filling the
+// library's SceneOptions and ViewOptions (styles/view.h), which parse and check them.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -194,7 +194,6 @@ ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandl
   return out;
 }
 
-
 cv::Mat lines_over(const cv::Mat& lines, const cv::Mat& picture, const glm::vec3& line_color) {
   const cv::Size size = lines.size();
   expect_image(lines, CV_32FC1, size, "lines");
@@ -224,11 +223,11 @@ cv::Mat lines_over(const cv::Mat& lines, const cv::Mat& picture, const glm::vec3
 ImageHandle add_lines_over_pass(RenderGraph& g, ImageHandle lines, ImageHandle picture,
                                 const glm::vec3& line_color) {
   const auto out = g.resource<cv::Mat>("lines-over");
-  g.add_pass("lines-over", {lines, picture}, {out},
-             [lines, picture, out, line_color](PassContext& ctx) {
-               ctx.write(out, lines_over(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(picture),
-                                         line_color));
-             });
+  g.add_pass(
+      "lines-over", {lines, picture}, {out}, [lines, picture, out, line_color](PassContext& ctx) {
+        ctx.write(out,
+                  lines_over(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(picture), line_color));
+      });
   return out;
 }
 

@@ -23,19 +23,19 @@ namespace sylva {
 namespace {
 
 using watercolor_internal::blur;
-using watercolor_internal::glaze;
 using watercolor_internal::encode_srgb;
+using watercolor_internal::glaze;
 using watercolor_internal::kSqrt2Pi;
 using watercolor_internal::Layer;
 using watercolor_internal::LayerOut;
 using watercolor_internal::luminance;
 using watercolor_internal::paint_layer;
 using watercolor_internal::paper_relief;
+using watercolor_internal::PaperField;
 using watercolor_internal::rim_allowed;
 using watercolor_internal::seen_wood;
-using watercolor_internal::smoothed_luminance;
-using watercolor_internal::PaperField;
 using watercolor_internal::Shared;
+using watercolor_internal::smoothed_luminance;
 using watercolor_internal::srgb_tables;
 using watercolor_internal::SrgbTables;
 using watercolor_internal::to_display;

@@ -3,11 +3,11 @@
 // blurred depth test"). Every leaf cluster becomes one wash: its id mask is blurred and
 // thresholded (soft wet-on-wet or hard wet-on-dry edges), wobbled by the paper's gradient,
 // darkened along its rim where pigment pools (on the plant's outer edge and at depth steps
-// between washes, watercolor.rim_step), graded with the light inside it, tinted with the cluster's mean colour, given leaf
-// detail through a blurred depth test, and glazed over the washes behind it, back to front by
-// mean depth. Glazing is subtractive: each wash is an optical density (-log2 of its linear
-// transmittance) scaled by its coverage, and densities add (transmittances multiply), so a
-// thin or half-covered wash keeps its hue instead of greying towards the paper. A cluster's
+// between washes, watercolor.rim_step), graded with the light inside it, tinted with the cluster's
+// mean colour, given leaf detail through a blurred depth test, and glazed over the washes behind
+// it, back to front by mean depth. Glazing is subtractive: each wash is an optical density (-log2
+// of its linear transmittance) scaled by its coverage, and densities add (transmittances multiply),
+// so a thin or half-covered wash keeps its hue instead of greying towards the paper. A cluster's
 // wash continues about two blur radii under the clusters in front of it (normalised
 // convolution that ignores the occluding pixels) at a third of its density, so overlaps read
 // as glazes, with the back wash's rim showing through, rather than as abutting flat regions.

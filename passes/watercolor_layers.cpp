@@ -231,8 +231,8 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
     const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
     const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
-    const float* soft = s.gradation > 0.0f ? s.soft_luminance.ptr<float>(roi.y + y) + roi.x
-                                           : nullptr;
+    const float* soft =
+        s.gradation > 0.0f ? s.soft_luminance.ptr<float>(roi.y + y) + roi.x : nullptr;
     const float sy = b.at(y);
     cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
     for (int x = 0; x < w; ++x) {

@@ -71,7 +71,8 @@ void apply_value(const std::string& key, const toml::node& v, ParamSet& set,
 }
 
 // `layers = [...]`: preset names or paths (a relative path resolved against the file's folder).
-std::vector<std::string> layer_names(const toml::node& v, const Loaded& l, const std::string& label) {
+std::vector<std::string> layer_names(const toml::node& v, const Loaded& l,
+                                     const std::string& label) {
   const toml::array* list = v.as_array();
   if (!list || list->empty())
     throw InputError(label, "layers must be a list of one or more preset names or paths");
@@ -164,8 +165,9 @@ PresetInfo apply_preset(const std::string& name_or_path, ParamSet& set, const st
   apply(name_or_path, fs::path(), set, where, stack, info);
   const std::string label = info.source == "built-in" ? info.name + ".toml" : info.source;
   if (info.builder.empty() && info.layers.empty())
-    throw InputError(label, "names no builder (add builder = \"...\", layers = [...] or inherit "
-                            "a preset that does)");
+    throw InputError(label,
+                     "names no builder (add builder = \"...\", layers = [...] or inherit "
+                     "a preset that does)");
   if (!info.builder.empty() && !info.layers.empty())
     throw InputError(label, "names both a builder ('" + info.builder +
                                 "') and layers: a stacked preset's layers name the builders");

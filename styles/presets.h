@@ -32,12 +32,12 @@ struct PresetFile {
 const std::vector<PresetFile>& builtin_preset_files();
 
 struct PresetInfo {
-  std::string name;                // built-in name or the file's stem
-  std::string source;              // "built-in" or the file path
-  std::string description;         // the preset's own, else the nearest inherited one
-  std::string builder;             // the last one set along the inheritance chain; "" = layers
+  std::string name;                 // built-in name or the file's stem
+  std::string source;               // "built-in" or the file path
+  std::string description;          // the preset's own, else the nearest inherited one
+  std::string builder;              // the last one set along the inheritance chain; "" = layers
   std::vector<std::string> layers;  // a stacked preset's layers (the last set along the chain)
-  std::vector<std::string> chain;  // presets applied, in order, ending with this one
+  std::vector<std::string> chain;   // presets applied, in order, ending with this one
 };
 
 bool is_preset_path(const std::string& name_or_path);  // ends in .toml

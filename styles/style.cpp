@@ -302,8 +302,8 @@ Style::Style(const std::string& name_or_path, const std::vector<std::string>& ov
 }
 
 void Style::add_layers(const std::string& name_or_path, const std::vector<std::string>& overrides) {
-  const std::string label = m_info.source == "built-in" ? "preset '" + m_info.name + "'"
-                                                        : m_info.source;
+  const std::string label =
+      m_info.source == "built-in" ? "preset '" + m_info.name + "'" : m_info.source;
   for (const std::string& name : m_info.layers) {
     auto layer = std::make_unique<Style>(name);
     if (!layer->m_layers.empty())

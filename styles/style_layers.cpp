@@ -41,8 +41,7 @@ StyleOutput build_layers(RenderGraph& graph, const GBufferHandles& gbuffer,
       continue;
     }
     SYLVA_CHECK(drawn.lines.valid() && drawn.strokes.valid(), "layers: a later layer draws lines");
-    out.image =
-        add_lines_over_pass(graph, drawn.lines, out.image, layer.params().edges.color);
+    out.image = add_lines_over_pass(graph, drawn.lines, out.image, layer.params().edges.color);
     out.strokes = out.strokes.valid()
                       ? add_merge_strokes_pass(graph, out.strokes, drawn.strokes, "drawing")
                       : drawn.strokes;

@@ -33,7 +33,8 @@ void paint_image(cairo_t* cr, const cv::Mat& bgra, double pt_per_px) {
     unsigned char* out = data + static_cast<ptrdiff_t>(y) * stride;
     for (int x = 0; x < bgra.cols; ++x)  // little-endian ARGB32 is B, G, R, A in memory
       for (int k = 0; k < 4; ++k)
-        out[4 * x + k] = k == 3 ? in[x][3] : static_cast<unsigned char>((in[x][k] * in[x][3] + 127) / 255);
+        out[4 * x + k] =
+            k == 3 ? in[x][3] : static_cast<unsigned char>((in[x][k] * in[x][3] + 127) / 255);
   }
   cairo_surface_mark_dirty(image.get());
   cairo_save(cr);

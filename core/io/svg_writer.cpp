@@ -1,8 +1,8 @@
 #include "core/io/svg_writer.h"
 
+#include <glib.h>
 #include <cmath>
 #include <cstdio>
-#include <glib.h>
 #include <memory>
 #include <sstream>
 

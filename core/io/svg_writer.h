@@ -2,8 +2,8 @@
 // per line class present (a <g> with inkscape:groupmode="layer", inkscape:label = the class
 // name and id "layer-<class>"), in the drawing's order, under an optional "paper" layer
 // holding the background rect and a "paint" layer holding the drawing's paint
-// (StrokeDrawing::paint) as an embedded PNG. A constant-width stroke is a path with stroke-width and round
-// caps and joins; a stroke with per-point widths, or a dot, is its filled outline
+// (StrokeDrawing::paint) as an embedded PNG. A constant-width stroke is a path with stroke-width
+// and round caps and joins; a stroke with per-point widths, or a dot, is its filled outline
 // (stroke_outline, fill-rule nonzero), the same geometry core/stroke_render.h paints; a filled
 // region (Stroke::filled) is a path of its rings with fill-rule evenodd. The
 // viewBox is the image in px; width and height are px, or physical lengths with a DPI.

@@ -29,8 +29,9 @@ std::string render(const std::string& style, const std::string& out) {
 
 // The SVG without its paint layer (the strokes and the paper).
 std::string without_paint(const std::string& svg) {
-  return std::regex_replace(svg, std::regex("  <g inkscape:groupmode=\"layer\" id=\"layer-paint\""
-                                            "[^\\n]*\\n[^\\n]*\\n  </g>\\n"),
+  return std::regex_replace(svg,
+                            std::regex("  <g inkscape:groupmode=\"layer\" id=\"layer-paint\""
+                                       "[^\\n]*\\n[^\\n]*\\n  </g>\\n"),
                             "");
 }
 
@@ -59,9 +60,9 @@ TEST(Layers, StackedPresetsLayTheInkStylesLinesOverTheirPaint) {
     EXPECT_NE(svg.find("id=\"layer-paint\""), std::string::npos) << style;
     EXPECT_EQ(without_paint(svg), ink_svg) << style;
     // rsvg-convert draws the paint under the lines as the PNG shows them.
-    const RunResult r = run_command("rsvg-convert -w " + std::to_string(kSize) + " -h " +
-                                    std::to_string(kSize) + " -o " + base + "-svg.png " + base +
-                                    ".svg");
+    const RunResult r =
+        run_command("rsvg-convert -w " + std::to_string(kSize) + " -h " + std::to_string(kSize) +
+                    " -o " + base + "-svg.png " + base + ".svg");
     ASSERT_EQ(r.status, 0) << r.output;
     const cv::Mat drawn = cv::imread(base + "-svg.png", cv::IMREAD_GRAYSCALE);
     ASSERT_EQ(drawn.size(), stacked.size());

@@ -145,7 +145,8 @@ TEST(LeafPrimitives, TheOutlinesFadeInOverTheBandAroundTheStep) {
     p.depth_step = step;
     float w = 0.0f;
     for (const Stroke& s : leaf_layer(in, p, ink_lines(), EdgeParams{}).drawing.strokes)
-      if (s.cls == LineClass::Foliage && std::all_of(s.points.begin(), s.points.end(), off_the_third))
+      if (s.cls == LineClass::Foliage &&
+          std::all_of(s.points.begin(), s.points.end(), off_the_third))
         w = std::max(
             w, s.widths.empty() ? s.width : *std::max_element(s.widths.begin(), s.widths.end()));
     return w;

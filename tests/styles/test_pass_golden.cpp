@@ -140,8 +140,7 @@ TEST_P(PassGolden, EveryPassOutputMatches) {
   size_t goldens = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string file = e.path().filename().string();
-    if (owner(file) == style && !file.ends_with(".actual.png") &&
-        !file.ends_with(".diff.png"))
+    if (owner(file) == style && !file.ends_with(".actual.png") && !file.ends_with(".diff.png"))
       ++goldens;
   }
   EXPECT_EQ(goldens, images.size()) << style << ": a pass output appeared or disappeared";
