@@ -50,6 +50,22 @@ void add_coherence_study_options(CLI::App& cmd, CoherenceStudyCliOptions& o) {
   o.options.assign(all.begin() + long(before), all.end());
 }
 
+namespace {
+
+// The studies' views: `frames` views --step degrees apart about --axis, at --zoom (checked).
+CoherenceStudyOptions views_of(const CoherenceStudyCliOptions& o,
+                               const KeyframeStudyCliOptions& path, int frames) {
+  CoherenceStudyOptions so;
+  so.frames = frames;
+  so.step = o.step;
+  so.axis = path.axis.size() == 1 ? path.axis[0] : '?';
+  so.zoom = path.zoom;
+  validate_coherence_study(so);
+  return so;
+}
+
+}  // namespace
+
 void run_coherence_study_command(const SceneOptions& scene_options,
                                  const CoherenceStudyCliOptions& o,
                                  const KeyframeStudyCliOptions& path, bool frames_given,
@@ -57,12 +73,7 @@ void run_coherence_study_command(const SceneOptions& scene_options,
                                  const std::vector<std::string>& sets, const TradeoffOutputs& out) {
   // Every option is checked before the scene is loaded.
   resolve_view_options(view);
-  CoherenceStudyOptions so;
-  so.frames = frames_given ? path.frames : 12;
-  so.step = o.step;
-  so.axis = path.axis.size() == 1 ? path.axis[0] : '?';
-  so.zoom = path.zoom;
-  validate_coherence_study(so);
+  CoherenceStudyOptions so = views_of(o, path, frames_given ? path.frames : 12);
   const std::vector<std::string> names =
       o.styles.empty() ? builtin_preset_names() : split_list(o.styles, "--styles");
   const auto built = build_sheet_styles(expand_sheet(names, sets, {}), foliage);
@@ -117,12 +128,7 @@ void run_abstraction_study_command(const SceneOptions& scene_options,
                                    const std::vector<std::string>& sets,
                                    const TradeoffOutputs& out) {
   resolve_view_options(view);
-  CoherenceStudyOptions so;
-  so.frames = frames_given ? path.frames : 5;
-  so.step = o.step;
-  so.axis = path.axis.size() == 1 ? path.axis[0] : '?';
-  so.zoom = path.zoom;
-  validate_coherence_study(so);
+  CoherenceStudyOptions so = views_of(o, path, frames_given ? path.frames : 5);
   const std::vector<float> details = parse_numbers<float>(o.details, "--details");
   for (float d : details)
     if (!(d >= 0.0f && d <= 64.0f))

@@ -16,20 +16,23 @@ TEST(Compare, EveryBuiltInStyleOnOneSheet) {
   const RunResult r =
       run_sylva("compare " + small_tree() + " --size 96 --graph " + dir + "/g.dot -o " + out);
   ASSERT_EQ(r.status, 0) << r.output;
-  // Eight styles; two Luft preprocessings: expressive, toon and watercolor share one, ink,
-  // outline and pen (whose rho comes from ink.detail at this picture's scale) the other.
-  EXPECT_NE(r.output.find("8 cells"), std::string::npos) << r.output;
+  // Ten styles; two Luft preprocessings: expressive, toon and watercolor share one, ink,
+  // outline, pen and the stacks over ink (whose rho comes from ink.detail at this picture's
+  // scale) the other.
+  EXPECT_NE(r.output.find("10 cells"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("2 foliage preprocessing"), std::string::npos) << r.output;
   const cv::Mat sheet = cv::imread(out, cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(sheet.empty());
   EXPECT_EQ(sheet.channels(), 4);
-  // Three columns of 96 px cells and three rows with labels.
-  EXPECT_GT(sheet.cols, 3 * 96);
-  EXPECT_LT(sheet.cols, 3 * 96 + 40);
+  // Four columns of 96 px cells and three rows with labels.
+  EXPECT_GT(sheet.cols, 4 * 96);
+  EXPECT_LT(sheet.cols, 4 * 96 + 40);
   EXPECT_GT(sheet.rows, 3 * 96 + 3 * 20);
   const std::string dot = read_file(dir + "/g.dot");
-  for (const char* pass : {"cell-2/leaf-layer", "cell-3/ink-strokes", "cell-4/hatching",
-                           "cell-6/watercolor", "cell-7/blobs", "foliage-0/foliage-illumination"})
+  for (const char* pass :
+       {"cell-2/leaf-layer", "cell-3/ink-strokes", "cell-4/hatching", "cell-6/watercolor",
+        "cell-7/watercolor/watercolor", "cell-7/ink/lines-over", "cell-8/toon/toon",
+        "cell-8/ink/lines-over", "cell-9/blobs", "foliage-0/foliage-illumination"})
     EXPECT_NE(dot.find(pass), std::string::npos) << pass;
   // Same inputs, same bytes.
   const RunResult again =
