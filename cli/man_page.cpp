@@ -84,10 +84,12 @@ std::string man_page(const CLI::App& app, const std::string& version) {
     page << ".SS \"sylva " << roff(name) << "\"\n" << roff(cmd->get_description()) << "\n";
     options(page, own_option_rows(*cmd));
     std::string shared;
-    for (const auto& [slug, heading] : shared_groups())
+    for (const auto& group : shared_groups()) {
+      const std::string& heading = group.second;  // a lambda may not capture a binding (clang 14)
       if (!cmd->get_options([&](const CLI::Option* o) { return o->get_group() == heading; })
                .empty())
         shared += (shared.empty() ? "" : ", ") + heading;
+    }
     if (!shared.empty()) page << ".PP\nAnd the shared groups below: " << roff(shared) << ".\n";
   }
   for (const auto& [slug, heading] : shared_groups()) {
