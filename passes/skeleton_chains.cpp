@@ -1,9 +1,9 @@
 #include "passes/skeleton_chains.h"
 
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc.hpp>
 
 #include "core/error.h"
+#include "passes/thinning.h"
 
 namespace sylva {
 
@@ -22,9 +22,7 @@ cv::Mat thin_pieces(const cv::Mat& mask) {
                  stats.at<int>(i, cv::CC_STAT_HEIGHT) + 2) &
         frame;
     const cv::Mat piece = labels(box) == i;
-    cv::Mat thin;
-    cv::ximgproc::thinning(piece, thin, cv::ximgproc::THINNING_ZHANGSUEN);
-    skeleton(box) |= thin;
+    skeleton(box) |= thin_zhang_suen(piece);
   }
   return skeleton;
 }

@@ -1,6 +1,6 @@
 // Centre lines of thin shapes as polylines: a hanging strand, a twig or a fern's leaflet
 // narrower than the smallest feature drawn is one line down its middle, not an outline
-// (passes/ink_lines.h). Each connected piece is thinned (Zhang-Suen, OpenCV's ximgproc) in its
+// (passes/ink_lines.h). Each connected piece is thinned (Zhang-Suen, passes/thinning.h) in its
 // own bounding box, so the cost follows the pieces' area, and the one-pixel skeleton is walked
 // into chains of pixel centres: through pixels with two neighbours, ending at ends and at
 // junctions (three or more), loops closed. Spurs shorter than `min_spur` px that end freely at

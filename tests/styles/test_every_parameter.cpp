@@ -217,7 +217,12 @@ class EveryParameter : public ::testing::TestWithParam<Case> {
   // Renders the style, checking every pass's output into `w`; with `targets`, the raster pass
   // also keeps every G-buffer target for the direct probes. Returns the picture.
   cv::Mat render(const Style& style, Written& w, bool targets) {
-    SheetScene scene = make_sheet_scene(s_rig->scene, s_rig->rs, FoliageRun{}, 1);
+    // The foliage preprocessing through a cache shared by every case (each is its own process
+    // under ctest): a foliage.* extreme is computed once, not once per preset and render, and
+    // the second render of each case (the determinism check) reads it back.
+    FoliageRun run;
+    run.cache_dir = SYLVA_TEST_FOLIAGE_CACHE;
+    SheetScene scene = make_sheet_scene(s_rig->scene, s_rig->rs, run, 1);
     RenderGraph graph;
     observe(graph, w);
     const SheetPlan plan = add_sheet_passes(graph, {&style}, scene);
