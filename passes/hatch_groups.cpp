@@ -250,15 +250,18 @@ StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const 
   s.cross = p.cross;
   s.seed = uint64_t(p.seed);
   cv::Mat regions;
+  // The clumps are found even when only the wood is hatched: their count numbers the wood's
+  // groups (whose labels seed the strokes), so `ink`'s wood hatching is `pen`'s.
   std::vector<Group> groups = clump_groups(layer, normal, p, regions);
-  // A clump as the eye groups it: small pieces of other clusters seen through it belong to it.
-  regions = majority_labels(regions, std::max(1, int(std::lround(0.5 * detail * scale / f))));
-  const cv::Mat leaves = regions > 0;
-  const cv::Mat foliage_tone = tone_of(layer.rank, leaves, detail * scale / f, p);
+  cv::Mat tone(layer.front.size(), CV_32FC1, cv::Scalar(0));
+  if (what.foliage) {
+    // A clump as the eye groups it: small pieces of other clusters seen through it belong to it.
+    regions = majority_labels(regions, std::max(1, int(std::lround(0.5 * detail * scale / f))));
+    tone = tone_of(layer.rank, regions > 0, detail * scale / f, p);
+  }
   const std::vector<Group> wood = wood_groups(layer, int(groups.size()), regions);
   const cv::Mat wood_tone =
       tone_of(wood_rank(layer, color), layer.front == kWoodFront, 0.5 * detail * scale / f, p);
-  cv::Mat tone = foliage_tone.clone();
   wood_tone.copyTo(tone, layer.front == kWoodFront);
   if (!what.foliage) groups.clear();
   if (what.wood) groups.insert(groups.end(), wood.begin(), wood.end());

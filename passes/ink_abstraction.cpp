@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -168,14 +169,38 @@ cv::Mat median_depth(const cv::Mat& depth, const cv::Mat& plant, double window, 
   return median;
 }
 
+namespace {
+
+// Where every non-zero label within `radius` px is the pixel's own (the window's largest label
+// and its smallest non-zero one are both the pixel's), so the majority is its own; two
+// separable morphology passes instead of a count over the window. Labels as floats: exact
+// below 2^24, which the caller checks.
+cv::Mat own_windows(const cv::Mat& labels, int radius) {
+  cv::Mat f, nonzero, hi, lo;
+  labels.convertTo(f, CV_32F);
+  nonzero = f.clone();
+  nonzero.setTo(std::numeric_limits<float>::max(), labels == 0);
+  const cv::Mat k = cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1});
+  cv::dilate(f, hi, k);  // the default border value leaves the outside out
+  cv::erode(nonzero, lo, k);
+  return (hi == f) & (lo == f);
+}
+
+}  // namespace
+
 cv::Mat majority_labels(const cv::Mat& labels, int radius) {
   SYLVA_CHECK(labels.type() == CV_32SC1 && radius >= 0, "majority_labels: CV_32SC1 labels");
   cv::Mat out = labels.clone();
+  double most_label = 0.0;
+  cv::minMaxLoc(labels, nullptr, &most_label);
+  const cv::Mat own_only = most_label < double(1 << 24) && labels.total() > 0
+                               ? own_windows(labels, radius)
+                               : cv::Mat(labels.size(), CV_8UC1, cv::Scalar(0));
   std::vector<std::pair<int, int>> counts;  // label, count
   for (int y = 0; y < labels.rows; ++y)
     for (int x = 0; x < labels.cols; ++x) {
       const int own = labels.at<int>(y, x);
-      if (own == 0) continue;
+      if (own == 0 || own_only.at<uint8_t>(y, x)) continue;
       counts.clear();
       for (int v = std::max(0, y - radius); v <= std::min(labels.rows - 1, y + radius); ++v)
         for (int u = std::max(0, x - radius); u <= std::min(labels.cols - 1, x + radius); ++u) {

@@ -11,6 +11,7 @@
 #include "npr/sample_shadow.h"
 #include "passes/crack_chains.h"
 #include "passes/ink_working.h"
+#include "passes/leaf_outlines.h"
 #include "passes/pass_common.h"
 #include "passes/tone_rank.h"
 
@@ -44,23 +45,6 @@ void bind_leaf_params(ParamSet& set, LeafParams& p) {
 }
 
 namespace {
-
-// One frame's view-facing ellipse, at the working resolution.
-struct Primitive {
-  cv::Point2f c;         // centre, working px
-  float cos_t, sin_t;    // the major axis's direction
-  float a, b;            // semi-axes, working px, a >= b > 0
-  float depth;           // view depth of the piece's centre, scene units
-  glm::vec3 world;       // the piece's centre, world space
-  float area = 0;        // the piece's leaves' area, scene units²
-  float extent = 0;      // the depth extent of the plant it belongs to (plant_extents)
-  float rank = 0;        // tone rank at the centre
-  uint32_t cluster = 0;  // the piece's leaf cluster
-  // The quadratic form d^T Q d <= 1 of the ellipse about c.
-  double qa() const { return cos_t * cos_t / (a * a) + sin_t * sin_t / (b * b); }
-  double qb() const { return cos_t * sin_t * (1.0 / (a * a) - 1.0 / (b * b)); }
-  double qc() const { return sin_t * sin_t / (a * a) + cos_t * cos_t / (b * b); }
-};
 
 // Where a world point lands, in output px; false behind the eye.
 bool to_image(const glm::mat4& view_proj, const glm::vec3& p, cv::Size out, glm::vec2& at) {
@@ -124,30 +108,6 @@ bool make_primitive(const LeafPiece& piece, const glm::mat4& view, const glm::ma
   return p.depth > 0.0f;
 }
 
-// Calls span(y, x0, x1) for each row of pixels whose centres lie in the ellipse `p` scaled by
-// `k`, the centres x0..x1 (inclusive), clipped to `size`.
-template <class Span>
-void ellipse_spans(const Primitive& p, float k, cv::Size size, int y_from, int y_to, Span span) {
-  const double a = p.a * k, b = p.b * k;
-  if (!(a > 0.0) || !(b > 0.0)) return;
-  const double c2 = p.cos_t * p.cos_t, s2 = p.sin_t * p.sin_t;
-  const double qa = c2 / (a * a) + s2 / (b * b),
-               qb = p.cos_t * p.sin_t * (1 / (a * a) - 1 / (b * b)),
-               qc = s2 / (a * a) + c2 / (b * b);
-  const double ry = std::sqrt(a * a * s2 + b * b * c2);
-  const int y0 = std::max(y_from, int(std::ceil(p.c.y - ry - 0.5))),
-            y1 = std::min(y_to - 1, int(std::floor(p.c.y + ry - 0.5)));
-  for (int y = y0; y <= y1; ++y) {
-    const double dy = y + 0.5 - p.c.y;
-    const double disc = qb * qb * dy * dy - qa * (qc * dy * dy - 1.0);
-    if (disc < 0.0) continue;
-    const double r = std::sqrt(disc);
-    const int x0 = std::max(0, int(std::ceil(p.c.x + (-qb * dy - r) / qa - 0.5)));
-    const int x1 = std::min(size.width - 1, int(std::floor(p.c.x + (-qb * dy + r) / qa - 0.5)));
-    if (x0 <= x1) span(y, x0, x1);
-  }
-}
-
 // The wood seen (passes/seen_wood.h), which no leaf hides, at the working resolution: in front
 // of every primitive.
 void paint_wood(const SeenWood& seen, double f, LeafLayer& out) {
@@ -180,183 +140,6 @@ void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out) {
           }
       });
   });
-}
-
-float smoothstep(float e0, float e1, float x) {
-  if (e1 <= e0) return x >= e1 ? 1.0f : 0.0f;
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
-struct ArcStyle {
-  float step = 0;     // the depth step (scene units) at half-shadow
-  float fade = 0.5f;  // leaves.fade
-  float lit = 0, lit_step = 1;
-  float width[2] = {1, 1};  // px: interior (Foliage), against the paper (Silhouette)
-  float tone[2] = {1, 1};
-  bool on[2] = {true, true};
-  float inset = 0;        // output px the line lies inside the primitive's edge
-  size_t min_points = 2;  // the shortest open arc drawn, in points (about a working px apart)
-};
-
-struct ArcPoint {
-  glm::vec2 p;   // output px
-  float weight;  // 0 = not drawn
-  int cls;       // 0 interior, 1 against the paper
-};
-
-// The depth step that outlines primitive `p`: larger where it is lit.
-float step_of(const Primitive& p, const ArcStyle& s) {
-  const float lit = 1.0f - smoothstep(s.lit - 0.05f, s.lit + 0.05f, p.rank);
-  return s.step * p.extent * (1.0f + (s.lit_step - 1.0f) * lit);
-}
-
-int front_at(const cv::Mat& front, cv::Point2f q) {
-  const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
-  if (x < 0 || y < 0 || x >= front.cols || y >= front.rows) return 0;
-  return front.at<int>(y, x);
-}
-
-// Points around primitive i's outline, about one per working px, each weighted by how far the
-// primitive stands in front of what lies just outside it there (0 where it is hidden).
-std::vector<ArcPoint> arc_points(const std::vector<Primitive>& prims, size_t i,
-                                 const LeafLayer& layer, const ArcStyle& s) {
-  const Primitive& p = prims[i];
-  const double perimeter = std::numbers::pi * std::sqrt(2.0 * (p.a * p.a + p.b * p.b));
-  const int n = std::clamp(int(std::ceil(perimeter)), 12, 256);
-  const float step = step_of(p, s);
-  const double qa = p.qa(), qb = p.qb(), qc = p.qc();
-  std::vector<ArcPoint> pts(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    const double phi = 2.0 * std::numbers::pi * j / n;
-    const double lx = p.a * std::cos(phi), ly = p.b * std::sin(phi);
-    const cv::Point2f d(float(p.cos_t * lx - p.sin_t * ly), float(p.sin_t * lx + p.cos_t * ly));
-    cv::Point2f g(float(qa * d.x + qb * d.y), float(qb * d.x + qc * d.y));  // outward
-    g *= 1.0f / std::max(1e-12f, std::hypot(g.x, g.y));
-    const cv::Point2f q = p.c + d;
-    ArcPoint& a = pts[size_t(j)];
-    // The line lies on the primitive's side of its edge, over what it outlines.
-    const cv::Point2f on = q * float(layer.factor) - s.inset * g;
-    a.p = {on.x, on.y};
-    a.weight = 0.0f;
-    a.cls = 0;
-    if (front_at(layer.front, q - 0.75f * g) != int(i + 1)) continue;
-    const cv::Point2f o = q + 0.75f * g;
-    const int behind = front_at(layer.front, o);
-    if (behind == 0) {
-      a.weight = 1.0f;
-      a.cls = 1;
-      continue;
-    }
-    if (behind == int(i + 1)) continue;
-    const int x = std::clamp(int(std::floor(o.x)), 0, layer.depth.cols - 1),
-              y = std::clamp(int(std::floor(o.y)), 0, layer.depth.rows - 1);
-    const float gap = layer.depth.at<float>(y, x) - p.depth;
-    a.weight = smoothstep(step * (1.0f - s.fade), step * (1.0f + s.fade), gap);
-  }
-  return pts;
-}
-
-// The runs of drawn points, each a stroke of its class whose width follows the weight (so an
-// outline thins out as its step nears the threshold).
-void add_arcs(const std::vector<ArcPoint>& pts, const ArcStyle& s, std::vector<Stroke> (&out)[2]) {
-  const size_t n = pts.size();
-  auto drawn = [&](size_t j) { return pts[j].weight > 0.02f && s.on[pts[j].cls]; };
-  size_t start = n;
-  for (size_t j = 0; j < n; ++j)
-    if (!drawn(j) || pts[j].cls != pts[(j + n - 1) % n].cls) {
-      start = j;
-      break;
-    }
-  auto emit = [&](std::vector<size_t>& run, bool closed) {
-    const int cls = run.empty() ? 0 : pts[run[0]].cls;
-    // An open interior arc shorter than min_points (the detail) is dust, not a leaf's edge: it
-    // thins out from there to nothing at half of it, so it fades rather than vanishes as it
-    // shortens. The silhouette keeps every arc: its pieces join into the plant's outline.
-    const float keep =
-        closed || cls == 1
-            ? 1.0f
-            : std::clamp(2.0f * float(run.size()) / float(std::max<size_t>(2, s.min_points)) - 1.0f,
-                         0.0f, 1.0f);
-    if (run.size() >= (closed ? 3u : 2u) && keep > 0.0f) {
-      Stroke st;
-      st.cls = cls == 1 ? LineClass::Silhouette : LineClass::Foliage;
-      st.opacity = s.tone[cls];
-      st.closed = closed;
-      st.width = s.width[cls];
-      bool even = keep >= 1.0f;
-      for (size_t j : run) {
-        st.points.push_back(pts[j].p);
-        st.widths.push_back(s.width[cls] * keep * std::min(1.0f, pts[j].weight));
-        even = even && pts[j].weight >= 1.0f;
-      }
-      if (even) st.widths.clear();
-      out[cls].push_back(std::move(st));
-    }
-    run.clear();
-  };
-  std::vector<size_t> run;
-  if (start == n) {  // drawn all round, one class: a closed outline
-    for (size_t j = 0; j < n; ++j)
-      run.push_back(j);
-    emit(run, true);
-    return;
-  }
-  for (size_t k = 0; k < n; ++k) {
-    const size_t j = (start + k) % n;
-    if (!drawn(j) || (!run.empty() && pts[j].cls != pts[run.back()].cls)) emit(run, false);
-    if (drawn(j)) run.push_back(j);
-  }
-  emit(run, false);
-}
-
-// The deep shadow's black: each primitive's visible part within its ellipse scaled by its fill
-// (0..1 by rank), traced as filled regions.
-std::vector<Stroke> black_fills(const std::vector<Primitive>& prims, const LeafLayer& layer,
-                                const LeafParams& p, float opacity) {
-  std::vector<Stroke> fills;
-  const float black = p.black;
-  if (black <= 0.0f) return fills;
-  cv::Mat dark(layer.front.size(), CV_8UC1, cv::Scalar(0));
-  const float from = 1.0f - black;
-  for (size_t i = 0; i < prims.size(); ++i) {
-    const float k = smoothstep(from, from + p.black_fade, prims[i].rank);
-    // A core under a working pixel across is a speck, not shadow.
-    if (k * prims[i].b < 0.5f) continue;
-    ellipse_spans(prims[i], k, dark.size(), 0, dark.rows, [&](int y, int x0, int x1) {
-      const int* front = layer.front.ptr<int>(y);
-      uint8_t* row = dark.ptr<uint8_t>(y);
-      for (int x = x0; x <= x1; ++x)
-        if (front[x] == int(i + 1)) row[x] = 255;
-    });
-  }
-  std::vector<std::vector<cv::Point>> contours;
-  std::vector<cv::Vec4i> tree;
-  cv::findContours(dark, contours, tree, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
-  auto ring = [&](const std::vector<cv::Point>& c) {
-    Polyline line;
-    line.closed = true;
-    for (const cv::Point& q : c)
-      line.points.emplace_back(float(q.x) + 0.5f, float(q.y) + 0.5f);
-    line = simplify_polyline(smooth_polyline(line, 0.7), 0.3);
-    std::vector<glm::vec2> out;
-    for (const cv::Point2f& q : line.points)
-      out.emplace_back(q.x * float(layer.factor), q.y * float(layer.factor));
-    return out;
-  };
-  for (size_t i = 0; i < contours.size(); ++i) {
-    if (tree[i][3] >= 0 || contours[i].size() < 3) continue;  // holes go with their outer ring
-    Stroke s;
-    s.cls = LineClass::Shadow;
-    s.filled = true;
-    s.closed = true;
-    s.opacity = opacity;
-    s.points = ring(contours[i]);
-    for (int h = tree[i][2]; h >= 0; h = tree[size_t(h)][0])
-      if (contours[size_t(h)].size() >= 3) s.holes.push_back(ring(contours[size_t(h)]));
-    fills.push_back(std::move(s));
-  }
-  return fills;
 }
 
 // The pieces merged into clumps of one leaf cluster within one cell of `cell` scene units (a
@@ -540,8 +323,7 @@ LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLinePar
   s.inset = 0.5f * s.width[0];
   s.min_points = size_t(std::max(2.0, detail / layer.factor));
   std::vector<Stroke> arcs[2];
-  for (size_t i = 0; i < prims.size(); ++i)
-    add_arcs(arc_points(prims, i, layer, s), s, arcs);
+  outline_primitives(prims, layer, s, arcs);
   layer.drawing.strokes = black_fills(prims, layer, p, 1.0f);
   for (int k = 0; k < 2; ++k) {
     // Arcs of neighbouring primitives that meet become one path (an outline of many leaves).

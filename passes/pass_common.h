@@ -22,6 +22,13 @@ void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* 
 // cv::parallel_for_, a few bands per thread (a band per row would cost each row the
 // per-band set-up). Callers write only what their band owns and reduce nothing across bands,
 // so the result does not depend on the number of threads or how the bands fall.
+// 0 below e0, 1 above e1, Hermite-smooth between; a step at e1 when e1 <= e0.
+inline float smoothstep(float e0, float e1, float x) {
+  if (e1 <= e0) return x >= e1 ? 1.0f : 0.0f;
+  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
 template <class F>
 void for_bands(int count, F f) {
   const double bands = std::max(1, cv::getNumThreads()) * 4.0;

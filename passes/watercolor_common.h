@@ -10,6 +10,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "passes/pass_common.h"
+
 namespace sylva::watercolor_internal {
 
 constexpr float kSqrt2Pi = 2.50662827f;
@@ -50,11 +52,6 @@ inline float to_linear(const SrgbTables& t, float display) {
 }
 inline float to_density(const SrgbTables& t, float display) {
   return curve(t.density, display);
-}
-
-inline float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
 }
 
 inline float luminance(const cv::Vec3f& bgr) {

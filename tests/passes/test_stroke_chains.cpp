@@ -6,6 +6,8 @@
 // region borders.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <opencv2/imgproc.hpp>
 
 #include "passes/crack_chains.h"
@@ -162,6 +164,42 @@ TEST(MajorityLabels, SmoothsABorderAndKeepsBackground) {
   EXPECT_EQ(m.at<int>(10, 19), 1);
   EXPECT_EQ(m.at<int>(10, 20), 2);
   EXPECT_EQ(m.at<int>(0, 0), 0);
+}
+
+// The header's rule, counted over the whole window at every pixel (majority_labels skips the
+// windows that hold one label only).
+int majority_by_count(const cv::Mat& labels, int y, int x, int r) {
+  const int own = labels.at<int>(y, x);
+  if (own == 0) return 0;
+  std::map<int, int> counts;
+  for (int v = std::max(0, y - r); v <= std::min(labels.rows - 1, y + r); ++v)
+    for (int u = std::max(0, x - r); u <= std::min(labels.cols - 1, x + r); ++u)
+      if (const int l = labels.at<int>(v, u); l != 0) ++counts[l];
+  int most = 0;
+  for (const auto& [l, n] : counts)
+    most = std::max(most, n);
+  if (counts[own] == most) return own;  // a tie keeps the pixel's own
+  for (const auto& [l, n] : counts)     // else the smallest label of the most frequent
+    if (n == most) return l;
+  return own;
+}
+
+TEST(MajorityLabels, IsTheCountOverEveryWindow) {
+  cv::Mat noise(90, 70, CV_32FC1);
+  cv::randu(noise, 0.0f, 1.0f);
+  cv::GaussianBlur(noise, noise, {0, 0}, 2.0);
+  cv::Mat labels(noise.size(), CV_32SC1);
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x)  // patches of 0 and 1..5 with ragged borders
+      labels.at<int>(y, x) = int(noise.at<float>(y, x) * 60.0f) % 6 * (1 + (x * 7 + y) % 3 / 2);
+  for (int r : {0, 1, 3, 6}) {
+    const cv::Mat m = majority_labels(labels, r);
+    int wrong = 0;
+    for (int y = 0; y < labels.rows; ++y)
+      for (int x = 0; x < labels.cols; ++x)
+        wrong += m.at<int>(y, x) != majority_by_count(labels, y, x, r);
+    EXPECT_EQ(wrong, 0) << "radius " << r;
+  }
 }
 
 }  // namespace
