@@ -16,6 +16,7 @@
 #include "passes/watercolor_common.h"
 #include "passes/watercolor_layers.h"
 #include "passes/watercolor_light.h"
+#include "passes/watercolor_masses.h"
 #include "passes/watercolor_textures.h"
 
 namespace sylva {
@@ -70,6 +71,9 @@ bool check_inputs(const WatercolorImages& in, const WatercolorParams& p) {
 }
 
 // The edge and blur settings every layer shares, in pixels of this image.
+// The gaps a mass's wash covers, as a share of watercolor.mass (the closing's radius).
+constexpr double kMassClose = 0.05;
+
 Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, double scale) {
   Shared s;
   s.size = in.id.size();
@@ -83,6 +87,7 @@ Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, do
   s.detail = p.detail;
   s.gradation = p.gradation;
   s.srgb = &srgb_tables();
+  s.wood = int32_t(in.wood_cluster);
   return s;
 }
 
@@ -389,13 +394,28 @@ cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& gr
   return out;
 }
 
+// The images with the leaf clusters gathered into the crown's masses (watercolor.mass).
+WatercolorImages with_masses(const WatercolorImages& in, const WatercolorParams& p, double scale) {
+  WatercolorImages out = in;
+  if (!(p.mass > 0.0f) || !in.samples || !(in.units_per_px > 0.0)) return out;
+  const auto mass_of =
+      crown_masses(*in.samples, in.wood_cluster, 0.5 * p.mass * scale * in.units_per_px);
+  if (mass_of.empty()) return out;
+  out.id = mass_ids(in.id, mass_of);
+  out.samples = mass_samples(*in.samples, mass_of);
+  return out;
+}
+
 }  // namespace
 
-cv::Mat watercolor(const WatercolorImages& in, const glm::mat4& view_to_world,
+cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world,
                    const WatercolorParams& p) {
-  const bool use_albedo = check_inputs(in, p);
-  const double scale = reference_scale(in.id.size());
+  const bool use_albedo = check_inputs(input, p);
+  const double scale = reference_scale(input.id.size());
+  const WatercolorImages in = with_masses(input, p, scale);
   Shared s = shared_settings(in, p, scale);
+  // A mass is laid in one wash: gaps up to kMassClose of its size are painted over.
+  if (in.id.data != input.id.data) s.close = float(kMassClose * p.mass * scale);
   cv::Mat first_label;
   std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
   finish_layers(layers, use_albedo, *s.srgb);
@@ -425,6 +445,8 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
                 "pigment pooling along each wash's rim");
   set.add_float("watercolor.rim_step", p.rim_step, 0.0, 1.0, "of the plant's depth",
                 "depth step between two washes above which the nearer one's rim darkens");
+  set.add_float("watercolor.mass", p.mass, 0.0, 1024.0, "px at 1024 px",
+                "size of the masses the crown is painted as (0 = one wash per leaf cluster)");
   set.add_float("watercolor.gradation", p.gradation, 0.0, 1.0, "",
                 "wet-in-wet: how far a wash's value follows the light inside it (0 = flat)");
   set.add_float("watercolor.paper_strength", p.paper_strength, 0.0, 1.0, "",
@@ -491,6 +513,7 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                      in.camera = res.camera;
                    }
                    in.wood_cluster = res.wood_cluster;
+                   in.units_per_px = res.units_per_px;
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

@@ -1,6 +1,9 @@
 // Watercolor (Bousseau et al. 2006 "Interactive watercolor rendering with temporal coherence
 // and abstraction"; Luft & Deussen 2006 "Real-time watercolor illustrations of plants using a
-// blurred depth test"). Every leaf cluster becomes one wash: its id mask is blurred and
+// blurred depth test"). The leaf clusters are gathered into masses at the picture's scale
+// (watercolor.mass, passes/watercolor_masses.h; gaps up to a twentieth of a mass between its
+// leaves are painted over where they show the paper), and every mass becomes one wash (one per
+// cluster with watercolor.mass = 0, or without the scene's samples): its id mask is blurred and
 // thresholded (soft wet-on-wet or hard wet-on-dry edges), wobbled by the paper's gradient,
 // darkened along its rim where pigment pools (on the plant's outer edge and at depth steps
 // between washes, watercolor.rim_step), graded with the light inside it, tinted with the cluster's
@@ -68,6 +71,11 @@ struct WatercolorParams {
   // by more than this share of the plant's depth extent (a nearer mass over a farther one);
   // 0 = along every border between clusters, 1 = the outer edge only. [0, 1]; default 0.15.
   float rim_step = 0.15f;
+  // The size of the masses the crown is painted as (passes/watercolor_masses.h): leaf clusters
+  // whose centres lie within half of it of a mass's founding cluster are one wash. px at
+  // 1024 px (at the plant's distance, so a turntable keeps its masses); 0 = one wash per leaf
+  // cluster. Needs the scene's surface samples (the styles have them). [0, 1024]; default 450.
+  float mass = 450.0f;
   // Wet-in-wet gradation: how far a wash's value follows the light inside it (the shaded
   // luminance smoothed at twice the blur), 0 = a flat wash per cluster. [0, 1]; default 0.8.
   float gradation = 0.8f;
@@ -123,6 +131,9 @@ struct WatercolorImages {
   // washes, as a painter lays the trunk under the crown, and wherever the id buffer shows the
   // wood the leaves' washes leave it bare.
   uint32_t wood_cluster = 0;
+  // Scene units per px at the plant's distance (passes/hatching.h units_per_px): the masses'
+  // size in the scene. 0 = one wash per cluster.
+  double units_per_px = 0.0;
 };
 
 // Bousseau et al. 2006, pigment density variation: modulation of a colour channel c in [0, 1]
@@ -158,6 +169,7 @@ struct WatercolorResources {
   SamplesHandle samples{};    // "surface-samples", or none
   Camera camera;              // the frame's, with samples
   uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
+  double units_per_px = 0.0;  // WatercolorImages::units_per_px
 };
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only

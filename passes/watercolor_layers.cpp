@@ -1,5 +1,7 @@
 #include "passes/watercolor_layers.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -76,6 +78,7 @@ struct BlockScale {
 // this cluster's depth summed over the block's pixels and divided by their count (with detail).
 struct BlockMasks {
   cv::Mat own, known, own_depth;
+  cv::Mat paper;  // the background's share (only when gaps are closed)
 };
 
 // Sums the layer's pixels over the roi into blocks of f x f (the masks are smooth after the blur,
@@ -88,6 +91,8 @@ BlockMasks block_masks(const Shared& s, const cv::Rect& roi, int k, int f, bool 
   b.known = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
   cv::Mat count(sh, sw, CV_32F, cv::Scalar(0));
   if (detail) b.own_depth = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
+  const bool paper = s.close > 0.0f;
+  if (paper) b.paper = cv::Mat(sh, sw, CV_32F, cv::Scalar(0));
   for (int y = 0; y < h; ++y) {
     const int32_t* lab = s.label.ptr<int32_t>(roi.y + y) + roi.x;
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
@@ -95,9 +100,11 @@ BlockMasks block_masks(const Shared& s, const cv::Rect& roi, int k, int f, bool 
     float* kn = b.known.ptr<float>(y / f);
     float* n = count.ptr<float>(y / f);
     float* od = detail ? b.own_depth.ptr<float>(y / f) : nullptr;
+    float* pa = paper ? b.paper.ptr<float>(y / f) : nullptr;
     for (int x = 0; x < w; ++x) {
       const int sx = x / f;
       n[sx] += 1.0f;
+      if (pa && lab[x] < 0) pa[sx] += 1.0f;
       if (lab[x] == k) {
         o[sx] += 1.0f;
         if (od) od[sx] += dep[x];
@@ -108,7 +115,19 @@ BlockMasks block_masks(const Shared& s, const cv::Rect& roi, int k, int f, bool 
   b.own /= count;
   b.known /= count;
   if (detail) b.own_depth /= count;
+  if (paper) b.paper /= count;
   return b;
+}
+
+// The mask closed over gaps up to `radius` cells, taking only the paper's share of each cell:
+// the mass's wash covers the paper between its leaves, not the other washes.
+void close_over_paper(BlockMasks& b, float radius) {
+  const int r = std::max(1, int(std::lround(radius)));
+  cv::Mat closed;
+  cv::morphologyEx(b.own, closed, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
+  cv::Mat gain = cv::max(closed - b.own, 0.0f);
+  b.own += cv::min(gain, b.paper);
 }
 
 // Each block mask blurred (Gaussian, sigma in cells).
@@ -266,7 +285,8 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
   // The masks are blurred at 1/f of the resolution (they are smooth after the blur).
   const BlockScale scale(std::clamp(int(s.sigma / 2.0f), 1, 4));
   const bool detail = s.detail > 0.0f;
-  const BlockMasks blocks = block_masks(s, out.roi, k, scale.f, detail);
+  BlockMasks blocks = block_masks(s, out.roi, k, scale.f, detail);
+  if (s.close > 0.0f && layer.id != s.wood) close_over_paper(blocks, s.close / float(scale.f));
   const BlockMasks blurred = blur_masks(blocks, s.sigma / float(scale.f), detail);
   const SmallFields small = continue_under_occluders(blurred, detail);
   const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);

@@ -70,6 +70,10 @@ struct Shared {
   // values): the wet-in-wet gradation of value inside a wash follows it by `gradation`.
   cv::Mat soft_luminance;
   float gradation = 0;
+  // Gaps in a mass's wash smaller than this (px; the closing's radius) are painted over where
+  // they show the paper, as a painter lays a mass in one wash (0 = none; watercolor.mass).
+  float close = 0;
+  int32_t wood = 0;  // the wood's layer id, which is never closed (its gaps are the crown's)
   const SrgbTables* srgb = nullptr;
 };
 

@@ -200,6 +200,7 @@ StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
   r.samples = context.surface_samples;
   r.camera = context.camera;
   r.wood_cluster = context.branch_cluster;
+  r.units_per_px = units_per_px(context.camera, context.scene_sphere);
   return {add_watercolor_pass(graph, r, glm::inverse(context.view), p)};
 }
 

@@ -1,0 +1,62 @@
+// watercolor.mass through `sylva` on a shared tree: the crown painted as a few masses has
+// fewer thin dark rims inside it than one wash per leaf cluster (the measure of
+// ../shared/tools/depiction.py: a pixel 8 levels darker than its surroundings blurred by 4 px at
+// 1024 px), and the picture is the same bytes on a second render.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tests/cli/cli_support.h"
+#include "tests/test_support.h"
+
+namespace sylva::test {
+namespace {
+
+constexpr int kSize = 384;
+
+cv::Mat render_mass(const std::string& mass, const std::string& out) {
+  const RunResult r = run_sylva("render " + shared_dir() + "/assets/eztree_ash_medium_s5.glb" +
+                                " --style watercolor --size " + std::to_string(kSize) +
+                                " --set watercolor.mass=" + mass + " -o " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  return cv::imread(out, cv::IMREAD_COLOR);
+}
+
+// Share of the crown's interior (the painted pixels, closed and eroded by 3 % of the size)
+// that is a thin dark rim.
+double rim_share(const cv::Mat& picture, const cv::Mat& paper) {
+  cv::Mat grey, blurred, diff;
+  cv::cvtColor(picture, grey, cv::COLOR_BGR2GRAY);
+  grey.convertTo(grey, CV_32F);
+  const double s = kSize / 1024.0;
+  cv::GaussianBlur(grey, blurred, {0, 0}, 4.0 * s);
+  const cv::Mat rim = (grey - blurred) < -8.0f;
+  cv::absdiff(picture, paper, diff);
+  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
+  cv::Mat plant = diff > 24;
+  auto disc = [](double r) {
+    const int k = 2 * std::max(1, int(r)) + 1;
+    return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
+  };
+  cv::morphologyEx(plant, plant, cv::MORPH_CLOSE, disc(0.01 * kSize));
+  cv::erode(plant, plant, disc(0.03 * kSize));
+  const double n = cv::countNonZero(plant);
+  return n > 0 ? cv::countNonZero(rim & plant) / n : 0.0;
+}
+
+TEST(WatercolorCli, MassesPaintFewerRimsThanOneWashPerCluster) {
+  const std::string dir = temp_dir("watercolor-mass");
+  const cv::Mat clusters = render_mass("0", dir + "/clusters.png");
+  const cv::Mat masses = render_mass("450", dir + "/masses.png");
+  ASSERT_FALSE(clusters.empty() || masses.empty());
+  const cv::Mat paper(clusters.size(), CV_8UC3, clusters.at<cv::Vec3b>(2, 2));
+  const double before = rim_share(clusters, paper), after = rim_share(masses, paper);
+  EXPECT_GT(before, 0.05);
+  EXPECT_LT(after, 0.85 * before) << "rims " << before << " -> " << after;
+  const cv::Mat again = render_mass("450", dir + "/again.png");
+  EXPECT_EQ(cv::norm(masses, again, cv::NORM_INF), 0.0);
+}
+
+}  // namespace
+}  // namespace sylva::test
