@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -37,13 +38,40 @@ std::string decoded_frames(const std::string& video) {
   return r.output;
 }
 
+namespace {
+
+// Where the sampled scenes of every test program are kept: beside the build's sylva, one file
+// per (arguments, sylva's size and time), so a rebuilt sylva samples afresh.
+std::string shared_scene_path(const std::string& tag, const std::string& args) {
+  namespace fs = std::filesystem;
+  const fs::path sylva(SYLVA_BINARY);
+  std::error_code ec;
+  const auto size = fs::file_size(sylva, ec);
+  const auto time = fs::last_write_time(sylva, ec).time_since_epoch().count();
+  const size_t key =
+      std::hash<std::string>{}(args + "|" + std::to_string(size) + "|" + std::to_string(time));
+  const fs::path dir = sylva.parent_path().parent_path() / "test-scenes";
+  fs::create_directories(dir, ec);
+  return (dir / (tag + "-" + std::to_string(key) + ".glb")).string();
+}
+
+}  // namespace
+
 const std::string& sampled_scene(const std::string& tag, const std::string& args) {
   static std::map<std::string, std::string> paths;  // tag -> .glb; map references stay valid
   auto it = paths.find(tag);
   if (it != paths.end()) return it->second;
-  std::string p = temp_dir(tag) + "/" + tag + ".glb";
-  RunResult r = run_sylva("sample " + args + " -o " + p);
-  EXPECT_EQ(r.status, 0) << r.output;
+  // Each ctest entry is a process of its own: the scene is sampled once for all of them, into a
+  // file of this process's, then renamed into place (atomic: a reader never sees half a file).
+  const std::string p = shared_scene_path(tag, args);
+  if (!std::filesystem::exists(p)) {
+    const std::string mine = temp_dir(tag) + "/" + tag + ".glb";
+    RunResult r = run_sylva("sample " + args + " -o " + mine);
+    EXPECT_EQ(r.status, 0) << r.output;
+    std::error_code ec;
+    std::filesystem::rename(mine, p, ec);
+    if (ec) std::filesystem::copy_file(mine, p, std::filesystem::copy_options::overwrite_existing);
+  }
   return paths.emplace(tag, p).first->second;
 }
 

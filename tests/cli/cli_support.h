@@ -11,7 +11,8 @@ namespace sylva::test {
 // `sylva <args>` exits 2 with a single "sylva: error:" line that mentions `needle`.
 void expect_input_error(const std::string& args, const std::string& needle);
 
-// A scene written once per test program by `sylva sample ARGS -o <temp>/<tag>.glb`.
+// A scene written once by `sylva sample ARGS` and shared by every test program of the build
+// (build/test-scenes/, keyed by ARGS and the sylva binary).
 const std::string& sampled_scene(const std::string& tag, const std::string& args);
 
 // The names in a folder, sorted.
