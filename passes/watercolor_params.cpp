@@ -9,8 +9,9 @@
 namespace sylva {
 
 void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
-  set.add_float("watercolor.blur", p.blur, 0.0, 64.0, "px at 1024 px",
-                "Gaussian sigma of each leaf cluster's mask before thresholding");
+  set.add_float(
+      "watercolor.blur", p.blur, 0.0, 64.0, "px at 1024 px",
+      "Gaussian sigma of each wash's mask (a mass or a leaf cluster) before thresholding");
   set.add_float("watercolor.edge_softness", p.edge_softness, 0.0, 1.0, "",
                 "threshold width: 0 hard wet-on-dry edges, 1 soft wet-on-wet edges");
   set.add_float("watercolor.edge_darkening", p.edge_darkening, 0.0, 1.0, "",
