@@ -394,15 +394,19 @@ cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& gr
   return out;
 }
 
-// The images with the leaf clusters gathered into the crown's masses (watercolor.mass).
-WatercolorImages with_masses(const WatercolorImages& in, const WatercolorParams& p, double scale) {
+// The images with the leaf clusters gathered into the crown's masses (watercolor.mass); `used`
+// says whether they were (with the scene's samples, a mass size and one plant).
+WatercolorImages with_masses(const WatercolorImages& in, const WatercolorParams& p, double scale,
+                             bool& used) {
   WatercolorImages out = in;
+  used = false;
   if (!(p.mass > 0.0f) || !in.samples || !(in.units_per_px > 0.0)) return out;
   const auto mass_of =
       crown_masses(*in.samples, in.wood_cluster, 0.5 * p.mass * scale * in.units_per_px);
   if (mass_of.empty()) return out;
   out.id = mass_ids(in.id, mass_of);
   out.samples = mass_samples(*in.samples, mass_of);
+  used = true;
   return out;
 }
 
@@ -412,10 +416,11 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
                    const WatercolorParams& p) {
   const bool use_albedo = check_inputs(input, p);
   const double scale = reference_scale(input.id.size());
-  const WatercolorImages in = with_masses(input, p, scale);
+  bool masses = false;
+  const WatercolorImages in = with_masses(input, p, scale, masses);
   Shared s = shared_settings(in, p, scale);
   // A mass is laid in one wash: gaps up to kMassClose of its size are painted over.
-  if (in.id.data != input.id.data) s.close = float(kMassClose * p.mass * scale);
+  if (masses) s.close = float(kMassClose * p.mass * scale);
   cv::Mat first_label;
   std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
   finish_layers(layers, use_albedo, *s.srgb);
