@@ -1,6 +1,7 @@
 // The outlines and the black fills of the foliage's drawing primitives (passes/leaf_primitives.h):
 // the primitive itself, its outline arcs where it stands in front of what lies behind it by its
-// depth step, and the deep shadow's black. Shared by passes/leaf_primitives.cpp only.
+// depth step, and the deep shadow's black. Shared by passes/leaf_primitives.cpp and the
+// watercolor's leaf marks (passes/watercolor_marks.cpp).
 #pragma once
 
 #include <algorithm>
@@ -54,6 +55,17 @@ void ellipse_spans(const Primitive& p, float k, cv::Size size, int y_from, int y
     if (x0 <= x1) span(y, x0, x1);
   }
 }
+
+// The frame's view-facing ellipses at the working resolution (`f` output px per working px):
+// each piece of in.pieces, or each clump of a cluster's pieces within one cell of `cell` scene
+// units (0 = the pieces), of its own projected shape (LeafShape::Auto) or round, no smaller
+// than `least` working px of semi-axis; those in front of the eye and near the frame.
+std::vector<Primitive> project_primitives(const LeafImages& in, LeafShape shape, double f,
+                                          float least, double cell);
+
+// Each primitive a flat solid at its depth into out.front (index + 1) and out.depth, behind
+// what is marked kWoodFront (the lower index wins a tie, whatever the threads).
+void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out);
 
 struct ArcStyle {
   float step = 0;     // the depth step (scene units) at half-shadow

@@ -124,24 +124,6 @@ void paint_wood(const SeenWood& seen, double f, LeafLayer& out) {
     }
 }
 
-// Each primitive a flat solid at its depth (a z-buffer; the lower index wins a tie, so the
-// result does not depend on the threads).
-void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out) {
-  const cv::Size size = out.front.size();
-  for_bands(size.height, [&](int y0, int y1) {
-    for (size_t i = 0; i < prims.size(); ++i)
-      ellipse_spans(prims[i], 1.0f, size, y0, y1, [&](int y, int x0, int x1) {
-        int* front = out.front.ptr<int>(y);
-        float* depth = out.depth.ptr<float>(y);
-        for (int x = x0; x <= x1; ++x)
-          if (front[x] != kWoodFront && prims[i].depth < depth[x]) {
-            depth[x] = prims[i].depth;
-            front[x] = int(i + 1);
-          }
-      });
-  });
-}
-
 // The pieces merged into clumps of one leaf cluster within one cell of `cell` scene units (a
 // grid fixed in world space, so a clump keeps its leaves as the view turns): the clump's area,
 // centre and covariance from its pieces' moments. Pieces of a cut element stay as they are
@@ -287,6 +269,29 @@ void plant_extents(const LeafLayer& layer, std::vector<Primitive>& prims) {
 }
 
 }  // namespace
+
+void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out) {
+  const cv::Size size = out.front.size();
+  for_bands(size.height, [&](int y0, int y1) {
+    for (size_t i = 0; i < prims.size(); ++i)
+      ellipse_spans(prims[i], 1.0f, size, y0, y1, [&](int y, int x0, int x1) {
+        int* front = out.front.ptr<int>(y);
+        float* depth = out.depth.ptr<float>(y);
+        for (int x = x0; x <= x1; ++x)
+          if (front[x] != kWoodFront && prims[i].depth < depth[x]) {
+            depth[x] = prims[i].depth;
+            front[x] = int(i + 1);
+          }
+      });
+  });
+}
+
+std::vector<Primitive> project_primitives(const LeafImages& in, LeafShape shape, double f,
+                                          float least, double cell) {
+  LeafParams p;
+  p.shape = shape;
+  return frame_primitives(in, p, f, least, cell);
+}
 
 LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
                      const EdgeParams& edges) {

@@ -16,6 +16,7 @@
 #include "passes/watercolor_common.h"
 #include "passes/watercolor_layers.h"
 #include "passes/watercolor_light.h"
+#include "passes/watercolor_marks.h"
 #include "passes/watercolor_masses.h"
 #include "passes/watercolor_textures.h"
 
@@ -433,8 +434,9 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
   if (p.gradation > 0.0f) s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;
-  const cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
-                                wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
+  cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
+                          wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
+  glaze_leaf_marks(input, p, density);
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
   const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
   const cv::Mat relief = paper_relief(paper, s.size);
@@ -453,9 +455,11 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
   if (albedo && res.albedo.valid()) reads.push_back(res.albedo);
   if (turbulence) reads.push_back(res.position);
   if (res.samples.valid()) reads.push_back(res.samples);
+  const bool marks = p.marks > 0.0f && res.pieces.valid();
+  if (marks) reads.push_back(res.pieces);
   const auto out = graph.resource<cv::Mat>("watercolor");
   graph.add_pass("watercolor", reads, {out},
-                 [res, view_to_world, p, albedo, turbulence, out](PassContext& ctx) {
+                 [res, view_to_world, p, albedo, turbulence, marks, out](PassContext& ctx) {
                    WatercolorImages in;
                    in.color = ctx.read<cv::Mat>(res.color);
                    in.id = ctx.read<cv::Mat>(res.id);
@@ -468,6 +472,11 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                    }
                    in.wood_cluster = res.wood_cluster;
                    in.units_per_px = res.units_per_px;
+                   if (marks) {
+                     in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
+                     in.camera = res.camera;
+                     in.light = res.light;
+                   }
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

@@ -11,10 +11,13 @@
 // it, back to front by mean depth. Glazing is subtractive: each wash is an optical density (-log2
 // of its linear transmittance) scaled by its coverage, and densities add (transmittances multiply),
 // so a thin or half-covered wash keeps its hue instead of greying towards the paper. A cluster's
-// wash continues about two blur radii under the clusters in front of it (normalised
-// convolution that ignores the occluding pixels) at a third of its density, so overlaps read
-// as glazes, with the back wash's rim showing through, rather than as abutting flat regions.
-// Paper grain and world-space turbulence then modulate the pigment density with Bousseau's
+// wash continues under the clusters in front of it (normalised convolution that ignores the
+// occluding pixels), fading out over about two blur radii, and where a nearer wash covers it
+// only about a third of its pigment shows (weakened by the nearer wash's own coverage, so the
+// two meet without a band of doubled pigment): overlaps read as soft glazes rather than as
+// abutting flat regions or outlined patches. The detail layer (passes/watercolor_marks.h,
+// watercolor.marks) then glazes leaf-scale touches of each leaf's own shape over the washes,
+// denser in shadow and faded by the blurred depth test. Paper grain and world-space turbulence then modulate the pigment density with Bousseau's
 // formula, and the result sits on paper. The masks are blurred at reduced resolution and each
 // wash is painted over its bounding box only.
 //
@@ -48,7 +51,9 @@
 #include "core/gl/camera.h"
 #include "core/graph/render_graph.h"
 #include "core/params.h"
+#include "npr/leaf_pieces.h"
 #include "npr/surface_samples.h"
+#include "passes/leaf_primitives.h"
 
 namespace sylva {
 
@@ -65,8 +70,8 @@ struct WatercolorParams {
   // Pigment pooling at the wash's rim, from the blurred mask's gradient magnitude: the extra
   // pigment density at the steepest edge (Bousseau's d - 1; 1 = twice the pigment), scaled
   // down on soft edges (by 1 - 0.8 edge_softness: wet-on-wet diffuses rather than pools).
-  // [0, 1]; default 0.6.
-  float edge_darkening = 0.6f;
+  // [0, 1]; default 0.4.
+  float edge_darkening = 0.4f;
   // Where rims darken besides the foliage's outer edge: between two washes whose depths differ
   // by more than this share of the plant's depth extent (a nearer mass over a farther one);
   // 0 = along every border between clusters, 1 = the outer edge only. [0, 1]; default 0.15.
@@ -80,8 +85,8 @@ struct WatercolorParams {
   // luminance smoothed at twice the blur), 0 = a flat wash per cluster. [0, 1]; default 0.8.
   float gradation = 0.8f;
   // beta of Bousseau's density modulation by the paper texture (pigment settling in the
-  // grain). [0, 1]; default 0.6.
-  float paper_strength = 0.6f;
+  // grain). [0, 1]; default 0.45.
+  float paper_strength = 0.45f;
   // beta of Bousseau's density modulation by low-frequency turbulence (uneven pigment flow),
   // 3-D noise in world space. [0, 1]; default 0.5.
   float turbulence_strength = 0.5f;
@@ -99,6 +104,12 @@ struct WatercolorParams {
   // leaves stand in front of their blurred depth (Luft & Deussen's blurred depth test).
   // [0, 1]; default 0.5.
   float detail = 0.5f;
+  // The detail layer (passes/watercolor_marks.h): the pigment of the leaf-scale marks glazed
+  // over the washes, 0 = none. Needs the scene's leaf pieces (the styles have them). [0, 1];
+  // default 0.6.
+  float marks = 0.6f;
+  // The smallest mark's diameter. px at 1024 px; default 10; [2, 64].
+  float mark_size = 10.0f;
   // Paper grain size (the generated paper's finest noise period). px at 1024 px; default 3;
   // [1, 16].
   float grain = 3.0f;
@@ -134,6 +145,10 @@ struct WatercolorImages {
   // Scene units per px at the plant's distance (passes/hatching.h units_per_px): the masses'
   // size in the scene. 0 = one wash per cluster.
   double units_per_px = 0.0;
+  // The scene's leaf pieces (npr/leaf_pieces.h) for the marks, or null (no detail layer), and
+  // the key light whose shadow through the crown darkens them.
+  std::shared_ptr<const LeafPieces> pieces;
+  KeyLight light;
 };
 
 // Bousseau et al. 2006, pigment density variation: modulation of a colour channel c in [0, 1]
@@ -170,6 +185,8 @@ struct WatercolorResources {
   Camera camera;              // the frame's, with samples
   uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
   double units_per_px = 0.0;  // WatercolorImages::units_per_px
+  LeafPiecesHandle pieces{};  // "leaf-pieces", or none (no marks)
+  KeyLight light;             // WatercolorImages::light
 };
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only

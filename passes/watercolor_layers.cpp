@@ -14,7 +14,7 @@ namespace {
 // How far (as blurred coverage of known pixels) a wash continues under the clusters in front
 // of it: the confidence of the normalised convolution reaches 1 at this value, so the wash
 // ends about two blur radii under its occluder.
-constexpr float kUnderConfidence = 0.06f;
+constexpr float kUnderConfidence = 0.5f;
 // The share of a wash's pigment that shows where a nearer cluster covers it.
 constexpr float kUnderStrength = 0.35f;
 // The blurred depth test's transition: a leaf this far (in standard deviations of its
@@ -140,33 +140,28 @@ BlockMasks blur_masks(const BlockMasks& m, float small_sigma, bool detail) {
 }
 
 // What a wash is painted from, on the small grid: mask, the blurred mask continued under
-// occluders; cover, the occluders' coverage; depth, this cluster's blurred depth (with detail).
+// occluders; depth, this cluster's blurred depth (with detail).
 struct SmallFields {
-  cv::Mat mask, cover, depth;
+  cv::Mat mask, depth;
 };
 
 // The blurred mask continued under occluders by normalised convolution (only where enough of
-// the neighbourhood is known, so it stops about two blur radii in); the occluders' coverage; the
-// blurred depth of this cluster.
+// the neighbourhood is known, so it stops about two blur radii in); the blurred depth of this
+// cluster.
 SmallFields continue_under_occluders(const BlockMasks& blurred, bool detail) {
   const int sw = blurred.own.cols, sh = blurred.own.rows;
   SmallFields out;
   out.mask.create(sh, sw, CV_32F);
-  out.cover.create(sh, sw, CV_32F);
   if (detail) out.depth.create(sh, sw, CV_32F);
   for (int y = 0; y < sh; ++y) {
     const float* bo = blurred.own.ptr<float>(y);
     const float* bk = blurred.known.ptr<float>(y);
     const float* bd = detail ? blurred.own_depth.ptr<float>(y) : nullptr;
     float* m = out.mask.ptr<float>(y);
-    float* c = out.cover.ptr<float>(y);
     float* d = detail ? out.depth.ptr<float>(y) : nullptr;
     for (int x = 0; x < sw; ++x) {
       const float ratio = bk[x] > 1e-6f ? std::min(1.0f, bo[x] / bk[x]) : 0.0f;
       m[x] = ratio * smoothstep(0.0f, kUnderConfidence, bk[x]);
-      // The occluders' blurred coverage stands in for their wash (it leads it a little, so
-      // the two overlap at the border rather than leave a gap of bare paper).
-      c[x] = smoothstep(0.3f, 0.7f, 1.0f - bk[x]);
       if (d) d[x] = bo[x] > 1e-6f ? bd[x] / bo[x] : 0.0f;
     }
   }
@@ -230,10 +225,12 @@ float gradation(const Shared& s, const Layer& layer, float soft_luminance) {
   return 1.0f + s.gradation * (ratio - 1.0f);
 }
 
-// The wash's optical density over the roi: the wobbled mask thresholded, weakened under nearer
-// clusters, darkened at its rim, tinted with the layer's pigment and its leaves' detail.
-cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect& roi,
-                     const BlockScale& b, const cv::Mat& mask, const SmallFields& small) {
+// The wash's optical density over the roi (out.density) and its coverage (out.coverage): the
+// wobbled mask thresholded, darkened at its rim, tinted with the layer's pigment and its
+// leaves' detail.
+void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& b,
+                  const cv::Mat& mask, const SmallFields& small, LayerOut& out) {
+  const cv::Rect roi = out.roi;
   const int w = roi.width, h = roi.height;
   const bool detail = s.detail > 0.0f;
   // Gradient magnitude of a blurred unit step peaks at 1 / (sigma sqrt(2 pi)): normalise by it
@@ -241,7 +238,8 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
   const float grad_norm = 0.5f * std::max(s.sigma, 0.5f) * kSqrt2Pi;  // 0.5: central difference
   const float lo = 0.5f - s.half_width, hi = 0.5f + s.half_width;
   const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
-  cv::Mat density(h, w, CV_32FC3);
+  out.density.create(h, w, CV_32FC3);
+  out.coverage.create(h, w, CV_32F);
   for (int y = 0; y < h; ++y) {
     const float* m = mask.ptr<float>(y);
     const float* mu = mask.ptr<float>(std::max(y - 1, 0));
@@ -253,17 +251,16 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
     const float* soft =
         s.gradation > 0.0f ? s.soft_luminance.ptr<float>(roi.y + y) + roi.x : nullptr;
     const float sy = b.at(y);
-    cv::Vec3f* t = density.ptr<cv::Vec3f>(y);
+    cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
+    float* cov = out.coverage.ptr<float>(y);
     for (int x = 0; x < w; ++x) {
-      const float coverage = smoothstep(lo, hi, m[x]);
-      if (coverage <= 0.0f) {
+      const float alpha = smoothstep(lo, hi, m[x]);
+      cov[x] = alpha;
+      if (alpha <= 0.0f) {
         t[x] = cv::Vec3f(0.0f, 0.0f, 0.0f);
         continue;
       }
       const float sx = b.at(x);
-      // Under a nearer cluster only part of this wash shows: the glaze over it darkens less
-      // than two full washes, as a painter's dilute overlaps do.
-      const float alpha = coverage * (1.0f - (1.0f - kUnderStrength) * sample(small.cover, sx, sy));
       const float rim = rim_ok ? rim_ok[x] : 1.0f;
       const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain * rim);
       cv::Vec3f c = detail && lab[x] == k
@@ -274,7 +271,23 @@ cv::Mat wash_density(const Shared& s, const Layer& layer, int k, const cv::Rect&
         t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
     }
   }
-  return density;
+}
+
+}  // namespace
+
+namespace {
+
+// Under a nearer wash only part of what lies behind shows (kUnderStrength where it covers
+// fully): the glaze over it darkens less than two full washes, as a painter's dilute overlaps
+// do, and weakens exactly where the nearer wash lies, so their borders meet without a band of
+// doubled pigment or of bare paper.
+void under_nearer(cv::Mat& behind, const cv::Mat& coverage) {
+  for (int y = 0; y < behind.rows; ++y) {
+    cv::Vec3f* d = behind.ptr<cv::Vec3f>(y);
+    const float* c = coverage.ptr<float>(y);
+    for (int x = 0; x < behind.cols; ++x)
+      d[x] *= 1.0f - (1.0f - kUnderStrength) * c[x];
+  }
 }
 
 }  // namespace
@@ -290,7 +303,7 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
   const BlockMasks blurred = blur_masks(blocks, s.sigma / float(scale.f), detail);
   const SmallFields small = continue_under_occluders(blurred, detail);
   const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);
-  out.density = wash_density(s, layer, k, out.roi, scale, mask, small);
+  wash_density(s, layer, k, scale, mask, small, out);
   return out;
 }
 
@@ -314,6 +327,13 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
     const bool is_wood = wood != 0 && sorted[k].id == wood;
     if (is_wood) wood_layer = &sorted[k];
     cv::Mat dst = (is_wood ? bark : density)(L.roi);
+    if (!is_wood) {
+      under_nearer(dst, L.coverage);
+      if (bark.data != density.data) {
+        cv::Mat under = bark(L.roi);
+        under_nearer(under, L.coverage);
+      }
+    }
     cv::add(dst, L.density, dst);
   }
   if (wood_seen.empty()) return density;

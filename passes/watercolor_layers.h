@@ -42,7 +42,8 @@ struct Layer {
 
 struct LayerOut {
   cv::Rect roi;
-  cv::Mat density;  // CV_32FC3 optical density (-log2 transmittance), 0 = no pigment
+  cv::Mat density;   // CV_32FC3 optical density (-log2 transmittance), 0 = no pigment
+  cv::Mat coverage;  // CV_32FC1 in [0, 1]: how much of what lies behind it this wash covers
 };
 
 struct Shared {

@@ -39,6 +39,11 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
                 "pigment the washes carry: their optical density scaled (1 full, 0.5 dilute)");
   set.add_float("watercolor.detail", p.detail, 0.0, 1.0, "",
                 "leaf shading kept inside a wash where leaves stand in front (blurred depth test)");
+  set.add_float(
+      "watercolor.marks", p.marks, 0.0, 1.0, "",
+      "pigment of the leaf-scale marks glazed over the washes, denser in shadow (0 = none)");
+  set.add_float("watercolor.mark_size", p.mark_size, 2.0, 64.0, "px at 1024 px",
+                "the smallest leaf mark's diameter (marks take each leaf's own shape)");
   set.add_float("watercolor.grain", p.grain, 1.0, 16.0, "px at 1024 px",
                 "finest period of the generated paper grain");
   set.add_text(

@@ -201,6 +201,8 @@ StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
   r.camera = context.camera;
   r.wood_cluster = context.branch_cluster;
   r.units_per_px = units_per_px(context.camera, context.scene_sphere);
+  r.pieces = context.leaf_pieces;
+  r.light = key_light_of(context);
   return {add_watercolor_pass(graph, r, glm::inverse(context.view), p)};
 }
 
