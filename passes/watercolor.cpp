@@ -18,6 +18,7 @@
 #include "passes/watercolor_light.h"
 #include "passes/watercolor_marks.h"
 #include "passes/watercolor_masses.h"
+#include "passes/watercolor_shadow.h"
 #include "passes/watercolor_textures.h"
 
 namespace sylva {
@@ -27,6 +28,8 @@ namespace {
 using watercolor_internal::blur;
 using watercolor_internal::encode_srgb;
 using watercolor_internal::glaze;
+using watercolor_internal::glaze_shadow;
+using watercolor_internal::key_shadow;
 using watercolor_internal::kSqrt2Pi;
 using watercolor_internal::Layer;
 using watercolor_internal::LayerOut;
@@ -49,6 +52,9 @@ using watercolor_internal::to_linear;
 constexpr float kPartSigma = 2.0f;
 constexpr float kPartLevel = 0.3f;
 constexpr float kWoodLevel = 0.6f;
+
+// The key light's shadow is evaluated on cells of this many px at 1024 px.
+constexpr double kShadowCell = 4.0;
 
 // Paper relief shading of the bare paper at paper_strength 1 (light grazing the grain).
 constexpr float kPaperRelief = 0.10f;
@@ -87,6 +93,7 @@ Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, do
   s.edge_gain = p.edge_darkening * (1.0f - 0.8f * p.edge_softness);
   s.detail = p.detail;
   s.gradation = p.gradation;
+  s.warm_cool = p.warm_cool;
   s.srgb = &srgb_tables();
   s.wood = int32_t(in.wood_cluster);
   return s;
@@ -432,10 +439,17 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   const PaperField paper(p, scale);
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
-  if (p.gradation > 0.0f) s.soft_luminance = smoothed_luminance(s, in.id != 0);
+  if (p.gradation > 0.0f || p.warm_cool > 0.0f)
+    s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;
   cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
                           wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
+  if (p.shadow > 0.0f && input.samples && !in.position.empty()) {
+    const int cell = std::max(1, int(std::lround(kShadowCell * scale)));
+    glaze_shadow(key_shadow(in.position, in.depth, view_to_world, *input.samples, input.light, cell,
+                            2.0f * std::max(s.sigma, 1.0f)),
+                 p.shadow, p.warm_cool, density);
+  }
   glaze_leaf_marks(input, p, density);
   const bool turbulence = p.turbulence_strength > 0.0f && !sorted.empty();
   const cv::Mat turb = turbulence ? turbulence_map(in, view_to_world, p, s.sigma) : cv::Mat();
@@ -449,33 +463,34 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
               "add_watercolor_pass: color, id and depth are required");
   const bool albedo = p.pigment == Pigment::Albedo;
   const bool turbulence = p.turbulence_strength > 0.0f;
-  SYLVA_CHECK(!turbulence || res.position.valid(),
-              "add_watercolor_pass: turbulence needs the position buffer");
+  const bool position = turbulence || (p.shadow > 0.0f && res.samples.valid());
+  SYLVA_CHECK(!position || res.position.valid(),
+              "add_watercolor_pass: turbulence and the shadow glaze need the position buffer");
   std::vector<ResourceRef> reads{res.color, res.id, res.depth};
   if (albedo && res.albedo.valid()) reads.push_back(res.albedo);
-  if (turbulence) reads.push_back(res.position);
+  if (position) reads.push_back(res.position);
   if (res.samples.valid()) reads.push_back(res.samples);
   const bool marks = p.marks > 0.0f && res.pieces.valid();
   if (marks) reads.push_back(res.pieces);
   const auto out = graph.resource<cv::Mat>("watercolor");
   graph.add_pass("watercolor", reads, {out},
-                 [res, view_to_world, p, albedo, turbulence, marks, out](PassContext& ctx) {
+                 [res, view_to_world, p, albedo, position, marks, out](PassContext& ctx) {
                    WatercolorImages in;
                    in.color = ctx.read<cv::Mat>(res.color);
                    in.id = ctx.read<cv::Mat>(res.id);
                    in.depth = ctx.read<cv::Mat>(res.depth);
                    if (albedo && res.albedo.valid()) in.albedo = ctx.read<cv::Mat>(res.albedo);
-                   if (turbulence) in.position = ctx.read<cv::Mat>(res.position);
+                   if (position) in.position = ctx.read<cv::Mat>(res.position);
                    if (res.samples.valid()) {
                      in.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(res.samples);
                      in.camera = res.camera;
                    }
                    in.wood_cluster = res.wood_cluster;
                    in.units_per_px = res.units_per_px;
+                   in.light = res.light;
                    if (marks) {
                      in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
                      in.camera = res.camera;
-                     in.light = res.light;
                    }
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });

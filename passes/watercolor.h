@@ -17,9 +17,9 @@
 // two meet without a band of doubled pigment): overlaps read as soft glazes rather than as
 // abutting flat regions or outlined patches. The detail layer (passes/watercolor_marks.h,
 // watercolor.marks) then glazes leaf-scale touches of each leaf's own shape over the washes,
-// denser in shadow and faded by the blurred depth test. Paper grain and world-space turbulence then modulate the pigment density with Bousseau's
-// formula, and the result sits on paper. The masks are blurred at reduced resolution and each
-// wash is painted over its bounding box only.
+// denser in shadow and faded by the blurred depth test. Paper grain and world-space turbulence then
+// modulate the pigment density with Bousseau's formula, and the result sits on paper. The masks are
+// blurred at reduced resolution and each wash is painted over its bounding box only.
 //
 // Reads (cv::Mat render-graph resources, conventions of core/gl/gbuffer.h):
 //   color     CV_8UC4 BGRA sRGB shaded, alpha = coverage (premultiplied over black): the
@@ -29,9 +29,9 @@
 //   id        CV_32SC1 cluster ids, 0 = background: one wash per distinct non-zero id
 //   depth     CV_32FC1 linear view depth, 0 = background: layer order and the blurred depth
 //             test
-//   position  CV_32FC3 view-space position: where the turbulence noise is evaluated (through
-//             view_to_world, so it sticks to the plant in a turntable); read only when
-//             turbulence_strength > 0
+//   position  CV_32FC3 view-space position: where the turbulence noise and the key light's
+//             shadow are evaluated (through view_to_world, so they stick to the plant in a
+//             turntable); read only when turbulence_strength > 0 or shadow > 0
 // Writes "watercolor": CV_8UC4 BGRA sRGB, opaque (alpha 255), on the paper colour.
 //
 // Pigment colour: the cluster's mean *shaded* colour by default, because the Luft foliage
@@ -110,6 +110,13 @@ struct WatercolorParams {
   float marks = 0.6f;
   // The smallest mark's diameter. px at 1024 px; default 10; [2, 64].
   float mark_size = 10.0f;
+  // The shadow glaze (passes/watercolor_shadow.h): its strength where the key light does not
+  // reach through the crown, 0 = none. Needs the scene's samples, the position buffer and a
+  // key light. [0, 1]; default 0.5.
+  float shadow = 0.5f;
+  // Warm light, cool shade: how far the shadow glaze is ultramarine rather than the pigment's
+  // own darker value, and the washes' lit sides shift towards warm. [0, 1]; default 0.5.
+  float warm_cool = 0.5f;
   // Paper grain size (the generated paper's finest noise period). px at 1024 px; default 3;
   // [1, 16].
   float grain = 3.0f;
@@ -133,7 +140,7 @@ struct WatercolorImages {
   cv::Mat albedo;    // CV_8UC4 BGRA sRGB; may be empty unless pigment = "albedo"
   cv::Mat id;        // CV_32SC1, 0 background
   cv::Mat depth;     // CV_32FC1 linear view depth, 0 background
-  cv::Mat position;  // CV_32FC3 view space; may be empty when turbulence_strength = 0
+  cv::Mat position;  // CV_32FC3 view space; may be empty when turbulence_strength = shadow = 0
   // The scene's surface samples (npr/surface_samples.h) and the frame's camera, or null: the
   // washes' shapes and order then come from the id buffer and its depths.
   std::shared_ptr<const SurfaceSamples> samples;
@@ -191,7 +198,7 @@ struct WatercolorResources {
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only
 // for pigment = "albedo" (InputError at run time if it is -1 then), position only when
-// turbulence_strength > 0. The parameters are copied.
+// turbulence_strength > 0 or shadow > 0. The parameters are copied.
 ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
                                 const glm::mat4& view_to_world, const WatercolorParams& p);
 

@@ -73,6 +73,13 @@ inline float sample(const cv::Mat& m, float x, float y) {
   return a + (b - a) * fy;
 }
 
+// How much a glazed optical density (CV_32FC3 pixel) counts as paint, in [0, 1]: a wash whose
+// channels' densities sum to kCoveringDensity or more covers the paper.
+constexpr float kCoveringDensity = 1.5f;
+inline float wash_cover(const cv::Vec3f& d) {
+  return std::min(1.0f, (d[0] + d[1] + d[2]) / kCoveringDensity);
+}
+
 // Gaussian blur with sigma in px (border replicated); below 0.3 px a copy.
 cv::Mat blur(const cv::Mat& m, float sigma);
 

@@ -20,6 +20,9 @@ constexpr float kUnderStrength = 0.35f;
 // The blurred depth test's transition: a leaf this far (in standard deviations of its
 // cluster's depth) in front of its blurred surroundings shows all its detail, as far behind none.
 constexpr float kDetailBand = 0.3f;
+// The largest share by which warm_cool = 1 raises red and lowers blue on a wash's lit side
+// (the reverse on its shaded side).
+constexpr float kWarmCool = 0.12f;
 
 // Bilinear in a CV_32FC2 grid at (x, y) in grid cells (cell centres at integer + 0.5 - 0.5).
 cv::Vec2f sample2(const cv::Mat& m, float x, float y) {
@@ -219,10 +222,16 @@ cv::Vec3f leaf_detail(const Shared& s, const Layer& layer, float blurred_depth, 
 }
 
 // Wet-in-wet gradation: the wash's value follows the light smoothed at its own scale (the
-// pigment's display colour scaled by the smoothed luminance over the layer's mean, bounded).
-float gradation(const Shared& s, const Layer& layer, float soft_luminance) {
+// pigment's display colour scaled by the smoothed luminance over the layer's mean, bounded),
+// its lit side a little warmer and its shaded side cooler by warm_cool (red up and blue down
+// where lit, the reverse in shade).
+cv::Vec3f gradation(const Shared& s, const Layer& layer, float soft_luminance, cv::Vec3f c) {
   const float ratio = std::clamp(soft_luminance / layer.mean_luminance, 0.4f, 1.8f);
-  return 1.0f + s.gradation * (ratio - 1.0f);
+  c *= 1.0f + s.gradation * (ratio - 1.0f);
+  const float t = kWarmCool * s.warm_cool * std::clamp((ratio - 1.0f) / 0.5f, -1.0f, 1.0f);
+  c[0] *= 1.0f - t;
+  c[2] *= 1.0f + t;
+  return c;
 }
 
 // The wash's optical density over the roi (out.density) and its coverage (out.coverage): the
@@ -249,7 +258,7 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
     const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
     const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
     const float* soft =
-        s.gradation > 0.0f ? s.soft_luminance.ptr<float>(roi.y + y) + roi.x : nullptr;
+        s.soft_luminance.empty() ? nullptr : s.soft_luminance.ptr<float>(roi.y + y) + roi.x;
     const float sy = b.at(y);
     cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
     float* cov = out.coverage.ptr<float>(y);
@@ -266,7 +275,7 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
       cv::Vec3f c = detail && lab[x] == k
                         ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
                         : layer.pigment_display;
-      if (soft) c *= gradation(s, layer, soft[x]);
+      if (soft) c = gradation(s, layer, soft[x], c);
       for (int ch = 0; ch < 3; ++ch)
         t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
     }

@@ -71,6 +71,7 @@ struct Shared {
   // values): the wet-in-wet gradation of value inside a wash follows it by `gradation`.
   cv::Mat soft_luminance;
   float gradation = 0;
+  float warm_cool = 0;  // watercolor.warm_cool: the lit side warmer, the shaded side cooler
   // Gaps in a mass's wash smaller than this (px; the closing's radius) are painted over where
   // they show the paper, as a painter lays a mass in one wash (0 = none; watercolor.mass).
   float close = 0;

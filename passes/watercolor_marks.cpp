@@ -39,10 +39,8 @@ constexpr float kShadowShare = 0.4f;
 // A dab's edge carries this share of its heart's pigment; neighbours differ by up to +-kVary.
 constexpr float kEdgeShare = 0.55f;
 constexpr float kVary = 0.25f;
-// Inside a wash a touch is its difference from the dabs' mean over this many dabs (sigma); a
-// wash of this optical density (summed over the channels) counts as covering.
+// Inside a wash a touch is its difference from the dabs' mean over this many dabs (sigma).
 constexpr double kMeanDabs = 1.5;
-constexpr float kWashDensity = 1.5f;
 
 struct Dab {
   float weight = 0;  // the share of the colour's density it lays
@@ -164,8 +162,7 @@ cv::Mat touches(const cv::Mat& laid, const cv::Mat& density, double dab_px) {
     const cv::Vec3f* w = wash.ptr<cv::Vec3f>(y);
     cv::Vec3f* o = out.ptr<cv::Vec3f>(y);
     for (int x = 0; x < out.cols; ++x) {
-      const float cover = std::min(1.0f, (w[x][0] + w[x][1] + w[x][2]) / kWashDensity);
-      o[x] = l[x] - cover * m[x];
+      o[x] = l[x] - watercolor_internal::wash_cover(w[x]) * m[x];
     }
   }
   return out;

@@ -44,6 +44,10 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p) {
       "pigment of the leaf-scale marks glazed over the washes, denser in shadow (0 = none)");
   set.add_float("watercolor.mark_size", p.mark_size, 2.0, 64.0, "px at 1024 px",
                 "the smallest leaf mark's diameter (marks take each leaf's own shape)");
+  set.add_float("watercolor.shadow", p.shadow, 0.0, 1.0, "",
+                "glaze where the key light does not reach through the crown (0 = none)");
+  set.add_float("watercolor.warm_cool", p.warm_cool, 0.0, 1.0, "",
+                "warm light, cool shade: the shadow glaze ultramarine and lit washes warmer");
   set.add_float("watercolor.grain", p.grain, 1.0, 16.0, "px at 1024 px",
                 "finest period of the generated paper grain");
   set.add_text(

@@ -34,6 +34,7 @@ WatercolorParams plain_params() {
   p.edge_darkening = 0;
   p.detail = 0;
   p.gradation = 0;
+  p.warm_cool = 0;
   p.paper_color = glm::vec3(1.0f);
   return p;
 }
@@ -338,6 +339,32 @@ TEST(Watercolor, GradationFollowsTheLightInsideAWash) {
   const cv::Mat graded = watercolor(s.img, kIdentity, p);
   EXPECT_NEAR(grey(flat, 100, 60), grey(flat, 100, 140), 1.0f);
   EXPECT_LT(grey(graded, 100, 60), grey(graded, 100, 140) - 20.0f);
+}
+
+TEST(Watercolor, WarmLightCoolShade) {
+  // The same disc: with warm_cool its lit (right) side turns redder and its shaded (left) side
+  // bluer than without, the wash's value staying about the same.
+  Scene s = empty_scene({200, 200});
+  add_disc(s, {100, 100}, 70, 1, {0.3f, 0.5f, 0.3f}, 4.0f);
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x)
+      if (s.img.id.at<int32_t>(y, x) == 1) {
+        const float lit = 0.3f + 0.7f * float(x - 30) / 140.0f;
+        set_pixel(s, x, y, 1, cv::Vec3f(0.3f, 0.5f, 0.3f) * lit, s.img.depth.at<float>(y, x));
+      }
+  WatercolorParams p = plain_params();
+  p.blur = 10;
+  p.gradation = 1;
+  const cv::Mat plain = watercolor(s.img, kIdentity, p);
+  p.warm_cool = 1;
+  const cv::Mat tinted = watercolor(s.img, kIdentity, p);
+  auto red_over_blue = [](const cv::Mat& m, int x) {
+    const cv::Vec4b v = m.at<cv::Vec4b>(100, x);
+    return float(v[2]) - float(v[0]);
+  };
+  EXPECT_GT(red_over_blue(tinted, 150), red_over_blue(plain, 150) + 3.0f) << "warm light";
+  EXPECT_LT(red_over_blue(tinted, 50), red_over_blue(plain, 50) - 3.0f) << "cool shade";
+  EXPECT_NEAR(grey(tinted, 100, 150), grey(plain, 100, 150), 6.0f);
 }
 
 TEST(Watercolor, TheWoodIsPaintedWhereverItIsSeen) {

@@ -6,19 +6,14 @@
 // costs more to create (eglInitialize loads LLVM, ~0.1 s). A backend this sylva was not built
 // with is skipped.
 #include <benchmark/benchmark.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "tests/perf/perf_child.h"
 
 namespace {
 
@@ -35,26 +30,9 @@ const fs::path& work_dir() {
 
 // Runs `sylva args...` (output to /dev/null); its wall time in seconds, or -1 when it failed.
 double run_sylva(const std::vector<std::string>& args) {
-  std::vector<std::string> argv_s = {SYLVA_BINARY};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_s)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  setenv("SYLVA_CACHE_DIR", (work_dir() / "cache").c_str(), 1);
-  posix_spawn_file_actions_t quiet;
-  posix_spawn_file_actions_init(&quiet);
-  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
-  const auto t0 = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, SYLVA_BINARY, &quiet, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&quiet);
-  if (spawned != 0) return -1;
-  int status = 0;
-  waitpid(pid, &status, 0);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? s : -1;
+  const sylva::perf::ChildRun r =
+      sylva::perf::run_sylva_child(args, (work_dir() / "cache").string(), true);
+  return r.ok() ? r.seconds : -1;
 }
 
 void time_command(benchmark::State& state, const std::vector<std::string>& args) {

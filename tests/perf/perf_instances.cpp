@@ -11,13 +11,9 @@
 // alone): 0 would be a cost independent of the count, 1 a cost in proportion to it. The same
 // for 1 and 400 instances drawn whole (--lod off) shows what the levels of detail buy.
 #include <benchmark/benchmark.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,7 +22,7 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "tests/perf/perf_child.h"
 
 namespace {
 
@@ -52,32 +48,11 @@ Files& files() {
   return f;
 }
 
-struct Run {
-  double seconds = 0.0;
-  long peak_kb = 0;
-  int status = -1;
-};
+using Run = sylva::perf::ChildRun;
 
 // Runs `sylva args...` as a child with the benchmark's cache folder.
 Run run_sylva(const std::vector<std::string>& args) {
-  std::vector<std::string> argv_s = {SYLVA_BINARY};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_s)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  setenv("SYLVA_CACHE_DIR", (files().dir / "cache").c_str(), 1);
-  Run r;
-  const auto t0 = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, SYLVA_BINARY, nullptr, nullptr, argv.data(), environ) != 0) return r;
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.peak_kb = usage.ru_maxrss;
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return sylva::perf::run_sylva_child(args, (files().dir / "cache").string(), false);
 }
 
 std::vector<std::string> render_args(int count, bool lod = true) {
