@@ -339,18 +339,9 @@ cv::Mat granules(const PaperField& paper, const cv::Mat& relief, const Shared& s
 cv::Mat turbulence_map(const WatercolorImages& in, const glm::mat4& view_to_world,
                        const WatercolorParams& p, float sigma) {
   const cv::Size size = in.depth.size();
-  cv::Mat cover, cover3, half_cover, half_pos;
-  cv::threshold(in.depth, cover, 0.0, 1.0, cv::THRESH_BINARY);
-  cv::merge(std::vector<cv::Mat>{cover, cover, cover}, cover3);
-  const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
-  cv::resize(cover, half_cover, half, 0, 0, cv::INTER_AREA);
-  cv::resize(in.position.mul(cover3), half_pos, half, 0, 0, cv::INTER_AREA);
-  for (int y = 0; y < half.height; ++y) {
-    const float* c = half_cover.ptr<float>(y);
-    cv::Vec3f* q = half_pos.ptr<cv::Vec3f>(y);
-    for (int x = 0; x < half.width; ++x)
-      q[x] = c[x] > 0.0f ? q[x] / c[x] : cv::Vec3f(0, 0, 0);
-  }
+  const watercolor_internal::CellPositions half =
+      watercolor_internal::cell_positions(in.position, in.depth, 2);
+  const cv::Mat &half_pos = half.mean, &half_cover = half.cover;
   cv::Mat half_turb = watercolor_turbulence(half_pos, half_cover, view_to_world, p);
   // Pigment that bled past the silhouette takes the turbulence of the nearest surface
   // (normalised convolution).

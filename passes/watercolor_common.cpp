@@ -53,4 +53,36 @@ cv::Mat blur(const cv::Mat& m, float sigma) {
   return out;
 }
 
+CellPositions cell_positions(const cv::Mat& position, const cv::Mat& depth, int cell) {
+  const cv::Size grid((depth.cols + cell - 1) / cell, (depth.rows + cell - 1) / cell);
+  CellPositions out;
+  out.mean = cv::Mat(grid, CV_32FC3, cv::Scalar::all(0));
+  out.cover = cv::Mat(grid, CV_32FC1, cv::Scalar(0));
+  cv::Mat count(grid, CV_32FC1, cv::Scalar(0));
+  for (int y = 0; y < depth.rows; ++y) {
+    const float* d = depth.ptr<float>(y);
+    const cv::Vec3f* p = position.ptr<cv::Vec3f>(y);
+    cv::Vec3f* m = out.mean.ptr<cv::Vec3f>(y / cell);
+    float* c = out.cover.ptr<float>(y / cell);
+    float* n = count.ptr<float>(y / cell);
+    for (int x = 0; x < depth.cols; ++x) {
+      n[x / cell] += 1.0f;
+      if (d[x] > 0.0f) {
+        m[x / cell] += p[x];
+        c[x / cell] += 1.0f;
+      }
+    }
+  }
+  for (int y = 0; y < grid.height; ++y) {
+    cv::Vec3f* m = out.mean.ptr<cv::Vec3f>(y);
+    float* c = out.cover.ptr<float>(y);
+    const float* n = count.ptr<float>(y);
+    for (int x = 0; x < grid.width; ++x) {
+      if (c[x] > 0.0f) m[x] /= c[x];
+      c[x] /= n[x];
+    }
+  }
+  return out;
+}
+
 }  // namespace sylva::watercolor_internal

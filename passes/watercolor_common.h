@@ -80,6 +80,14 @@ inline float wash_cover(const cv::Vec3f& d) {
   return std::min(1.0f, (d[0] + d[1] + d[2]) / kCoveringDensity);
 }
 
+// The mean view-space position (CV_32FC3) of the covered pixels (depth > 0) of each cell of
+// `cell` x `cell` px (the grid rounds up), and the share of the cell they cover (CV_32FC1);
+// (0, 0, 0) and 0 where none. Read row by row: no full-size copy is made.
+struct CellPositions {
+  cv::Mat mean, cover;
+};
+CellPositions cell_positions(const cv::Mat& position, const cv::Mat& depth, int cell);
+
 // Gaussian blur with sigma in px (border replicated); below 0.3 px a copy.
 cv::Mat blur(const cv::Mat& m, float sigma);
 

@@ -179,21 +179,23 @@ cv::Mat wobbled_mask(const Shared& s, const Layer& layer, const cv::Rect& roi, c
   const int g = std::max(b.f, kWobbleCell);
   const cv::Mat wobble = s.wobble_gain > 0.0f ? wobble_grid(s, layer, roi, g) : cv::Mat();
   cv::Mat mask(h, w, CV_32F);
-  for (int y = 0; y < h; ++y) {
-    float* m = mask.ptr<float>(y);
-    const float sy = b.at(y);
-    for (int x = 0; x < w; ++x) {
-      const float sx = b.at(x);
-      if (wobble.empty()) {
-        m[x] = sample(mask_s, sx, sy);
-        continue;
+  for_bands(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      float* m = mask.ptr<float>(y);
+      const float sy = b.at(y);
+      for (int x = 0; x < w; ++x) {
+        const float sx = b.at(x);
+        if (wobble.empty()) {
+          m[x] = sample(mask_s, sx, sy);
+          continue;
+        }
+        // Pixel centre x + 0.5 is at (x + 0.5) / g - 0.5 in the wobble's grid.
+        const cv::Vec2f d = sample2(wobble, (float(x) + 0.5f) / float(g) - 0.5f,
+                                    (float(y) + 0.5f) / float(g) - 0.5f);
+        m[x] = sample(mask_s, sx + d[0] * b.inv_f, sy + d[1] * b.inv_f);
       }
-      // Pixel centre x + 0.5 is at (x + 0.5) / g - 0.5 in the wobble's grid.
-      const cv::Vec2f d =
-          sample2(wobble, (float(x) + 0.5f) / float(g) - 0.5f, (float(y) + 0.5f) / float(g) - 0.5f);
-      m[x] = sample(mask_s, sx + d[0] * b.inv_f, sy + d[1] * b.inv_f);
     }
-  }
+  });
   return mask;
 }
 
@@ -249,37 +251,39 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
   const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
   out.density.create(h, w, CV_32FC3);
   out.coverage.create(h, w, CV_32F);
-  for (int y = 0; y < h; ++y) {
-    const float* m = mask.ptr<float>(y);
-    const float* mu = mask.ptr<float>(std::max(y - 1, 0));
-    const float* md = mask.ptr<float>(std::min(y + 1, h - 1));
-    const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
-    const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
-    const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
-    const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
-    const float* soft =
-        s.soft_luminance.empty() ? nullptr : s.soft_luminance.ptr<float>(roi.y + y) + roi.x;
-    const float sy = b.at(y);
-    cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
-    float* cov = out.coverage.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      const float alpha = smoothstep(lo, hi, m[x]);
-      cov[x] = alpha;
-      if (alpha <= 0.0f) {
-        t[x] = cv::Vec3f(0.0f, 0.0f, 0.0f);
-        continue;
+  for_bands(h, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const float* m = mask.ptr<float>(y);
+      const float* mu = mask.ptr<float>(std::max(y - 1, 0));
+      const float* md = mask.ptr<float>(std::min(y + 1, h - 1));
+      const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
+      const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
+      const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
+      const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
+      const float* soft =
+          s.soft_luminance.empty() ? nullptr : s.soft_luminance.ptr<float>(roi.y + y) + roi.x;
+      const float sy = b.at(y);
+      cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
+      float* cov = out.coverage.ptr<float>(y);
+      for (int x = 0; x < w; ++x) {
+        const float alpha = smoothstep(lo, hi, m[x]);
+        cov[x] = alpha;
+        if (alpha <= 0.0f) {
+          t[x] = cv::Vec3f(0.0f, 0.0f, 0.0f);
+          continue;
+        }
+        const float sx = b.at(x);
+        const float rim = rim_ok ? rim_ok[x] : 1.0f;
+        const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain * rim);
+        cv::Vec3f c = detail && lab[x] == k
+                          ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
+                          : layer.pigment_display;
+        if (soft) c = gradation(s, layer, soft[x], c);
+        for (int ch = 0; ch < 3; ++ch)
+          t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
       }
-      const float sx = b.at(x);
-      const float rim = rim_ok ? rim_ok[x] : 1.0f;
-      const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain * rim);
-      cv::Vec3f c = detail && lab[x] == k
-                        ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
-                        : layer.pigment_display;
-      if (soft) c = gradation(s, layer, soft[x], c);
-      for (int ch = 0; ch < 3; ++ch)
-        t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
     }
-  }
+  });
 }
 
 }  // namespace
@@ -323,16 +327,13 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
 // trunk and branches are painted wherever they are seen, through the gaps of the crown.
 cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
               const cv::Mat& wood_seen) {
-  std::vector<LayerOut> painted(sorted.size());
-  cv::parallel_for_(cv::Range(0, int(sorted.size())), [&](const cv::Range& r) {
-    for (int k = r.start; k < r.end; ++k)
-      painted[size_t(k)] = paint_layer(s, sorted[size_t(k)], k);
-  });
   cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
   cv::Mat bark = wood_seen.empty() ? density : cv::Mat(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
   const Layer* wood_layer = nullptr;
-  for (size_t k = 0; k < painted.size(); ++k) {
-    const LayerOut& L = painted[k];
+  // One wash at a time (each painted by all threads), glazed as soon as it is painted: only one
+  // wash is held at once, however many layers there are.
+  for (size_t k = 0; k < sorted.size(); ++k) {
+    const LayerOut L = paint_layer(s, sorted[k], int(k));
     const bool is_wood = wood != 0 && sorted[k].id == wood;
     if (is_wood) wood_layer = &sorted[k];
     cv::Mat dst = (is_wood ? bark : density)(L.roi);
@@ -346,18 +347,26 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
     cv::add(dst, L.density, dst);
   }
   if (wood_seen.empty()) return density;
-  cv::Mat open, seen3;
-  cv::merge(std::vector<cv::Mat>{wood_seen, wood_seen, wood_seen}, seen3);
-  cv::subtract(cv::Scalar::all(1.0), seen3, open);
-  if (wood_layer) {
-    // Twigs the wood's wash (its trunk and main branches) leaves out are painted in its
-    // pigment too, where they are seen: no streak of bare paper through the crown.
-    cv::Vec3f d;
+  // Twigs the wood's wash (its trunk and main branches) leaves out are painted in its pigment
+  // too, where they are seen: no streak of bare paper through the crown.
+  cv::Vec3f twig(0.0f, 0.0f, 0.0f);
+  if (wood_layer)
     for (int ch = 0; ch < 3; ++ch)
-      d[ch] = to_density(*s.srgb, std::min(wood_layer->pigment_display[ch], 1.0f));
-    bark = cv::max(bark, seen3.mul(cv::Scalar(d[0], d[1], d[2])));
-  }
-  return bark + density.mul(open);
+      twig[ch] = to_density(*s.srgb, std::min(wood_layer->pigment_display[ch], 1.0f));
+  for_bands(s.size.height, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      cv::Vec3f* d = density.ptr<cv::Vec3f>(y);
+      const cv::Vec3f* b = bark.ptr<cv::Vec3f>(y);
+      const float* seen = wood_seen.ptr<float>(y);
+      for (int x = 0; x < s.size.width; ++x) {
+        cv::Vec3f wood_here = b[x];
+        for (int ch = 0; ch < 3; ++ch)
+          wood_here[ch] = std::max(wood_here[ch], seen[x] * twig[ch]);
+        d[x] = wood_here + d[x] * (1.0f - seen[x]);
+      }
+    }
+  });
+  return density;
 }
 
 }  // namespace sylva::watercolor_internal

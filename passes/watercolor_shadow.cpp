@@ -39,21 +39,16 @@ cv::Mat key_shadow(const cv::Mat& position, const cv::Mat& depth, const glm::mat
   if (!light.on || light.sphere.empty() || samples.size() == 0) return {};
   const SampleShadow map =
       sample_shadow_map(samples, light.sphere, light.toward, light.point, kShadowMapSize, kReach);
-  const cv::Size grid((depth.cols + cell - 1) / cell, (depth.rows + cell - 1) / cell);
-  cv::Mat cover, cover3, small_cover, small_pos;
-  cv::threshold(depth, cover, 0.0, 1.0, cv::THRESH_BINARY);
-  cv::merge(std::vector<cv::Mat>{cover, cover, cover}, cover3);
-  cv::resize(cover, small_cover, grid, 0, 0, cv::INTER_AREA);
-  cv::resize(position.mul(cover3), small_pos, grid, 0, 0, cv::INTER_AREA);
-  cv::Mat shade(grid, CV_32F, cv::Scalar(0));
-  for (int y = 0; y < grid.height; ++y) {
+  const CellPositions cells = cell_positions(position, depth, cell);
+  const cv::Mat& small_cover = cells.cover;
+  cv::Mat shade(small_cover.size(), CV_32F, cv::Scalar(0));
+  for (int y = 0; y < shade.rows; ++y) {
     const float* c = small_cover.ptr<float>(y);
-    const cv::Vec3f* q = small_pos.ptr<cv::Vec3f>(y);
+    const cv::Vec3f* q = cells.mean.ptr<cv::Vec3f>(y);
     float* s = shade.ptr<float>(y);
-    for (int x = 0; x < grid.width; ++x) {
+    for (int x = 0; x < shade.cols; ++x) {
       if (!(c[x] > 0.0f)) continue;
-      const cv::Vec3f v = q[x] / c[x];
-      const glm::vec3 world(view_to_world * glm::vec4(v[0], v[1], v[2], 1.0f));
+      const glm::vec3 world(view_to_world * glm::vec4(q[x][0], q[x][1], q[x][2], 1.0f));
       s[x] = c[x] * (1.0f - light_reaching(map, world));
     }
   }
