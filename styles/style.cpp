@@ -274,7 +274,7 @@ const std::vector<StyleBuilder>& builder_table() {
        "a glazed watercolor wash per leaf cluster (Bousseau et al.)",
        &build_watercolor,
        IdKind::Cluster,
-       {}},
+       {.premultiplied_color = true}},
       {"blobs",
        "shrink-wrapped blob billboards per leaf cluster over the branches (Dudley)",
        &build_blobs,
@@ -374,6 +374,7 @@ void Style::configure(RasterRequest& request) const {
   // ink and blobs read the colour's alpha as coverage (the sheet keeps the view's background
   // for the style context).
   if (traits().coverage_alpha) request.background.a = 0.0f;
+  if (m_layers.empty() && traits().premultiplied_color) request.background = glm::vec4(0.0f);
 }
 
 const BuilderTraits& Style::traits() const {

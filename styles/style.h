@@ -65,6 +65,10 @@ struct BuilderTraits {
   bool coverage_alpha = false;  // reads the colour's alpha as coverage (background alpha 0)
   bool strokes = false;         // build() gives a StrokeDrawing (lines; SVG and PDF output)
   bool blob_outlines = false;   // draws blob outlines, which turntables can keyframe
+  // Reads the colour premultiplied over black (a transparent black clear): supersampled edge
+  // pixels then carry the leaf's colour times its coverage, not the view's background mixed in
+  // (a stack keeps its line layer's clear).
+  bool premultiplied_color = false;
 };
 
 struct StyleBuilder {

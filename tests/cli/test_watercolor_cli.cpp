@@ -60,3 +60,37 @@ TEST(WatercolorCli, MassesPaintFewerRimsThanOneWashPerCluster) {
 
 }  // namespace
 }  // namespace sylva::test
+
+namespace sylva::test {
+namespace {
+
+// The mean colour of the painted pixels (those differing from the paper in the corner).
+cv::Scalar painted_mean(const cv::Mat& picture) {
+  const cv::Mat paper(picture.size(), CV_8UC3, picture.at<cv::Vec3b>(2, 2));
+  cv::Mat diff;
+  cv::absdiff(picture, paper, diff);
+  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
+  return cv::mean(picture, diff > 24);
+}
+
+TEST(WatercolorCli, SupersamplingKeepsThePigment) {
+  // With --ssaa the colour's edge samples are averaged with what lies around the leaves: the
+  // washes must still take the leaves' colour (premultiplied over a transparent black clear),
+  // not the background's white mixed in, which greyed every wash of a sparse crown.
+  const std::string dir = temp_dir("watercolor-ssaa");
+  cv::Scalar mean[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = dir + "/ssaa" + std::to_string(k + 1) + ".png";
+    const RunResult r =
+        run_sylva("render " + shared_dir() + "/assets/eztree_ash_medium_s5.glb" +
+                  " --style watercolor --size 192 --ssaa " + std::to_string(k + 1) + " -o " + out);
+    ASSERT_EQ(r.status, 0) << r.output;
+    mean[k] = painted_mean(cv::imread(out, cv::IMREAD_COLOR));
+  }
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(mean[1][c], mean[0][c], 12.0)
+        << "channel " << c << ": " << mean[0] << " vs " << mean[1];
+}
+
+}  // namespace
+}  // namespace sylva::test
