@@ -41,6 +41,9 @@ constexpr float kEdgeShare = 0.55f;
 constexpr float kVary = 0.25f;
 // Inside a wash a touch is its difference from the dabs' mean over this many dabs (sigma).
 constexpr double kMeanDabs = 1.5;
+// On bare paper a touch is the only paint there (a willow's strands, a pine's outer tufts
+// beyond the washes): it carries this many times its pigment, so a lit strand still reads.
+constexpr float kOnPaper = 2.5f;
 
 struct Dab {
   float weight = 0;  // the share of the colour's density it lays
@@ -162,7 +165,8 @@ cv::Mat touches(const cv::Mat& laid, const cv::Mat& density, double dab_px) {
     const cv::Vec3f* w = wash.ptr<cv::Vec3f>(y);
     cv::Vec3f* o = out.ptr<cv::Vec3f>(y);
     for (int x = 0; x < out.cols; ++x) {
-      o[x] = l[x] - watercolor_internal::wash_cover(w[x]) * m[x];
+      const float cover = watercolor_internal::wash_cover(w[x]);
+      o[x] = l[x] * (1.0f + (kOnPaper - 1.0f) * (1.0f - cover)) - cover * m[x];
     }
   }
   return out;
