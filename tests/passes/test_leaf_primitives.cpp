@@ -16,27 +16,12 @@
 #include "npr/leaf_pieces.h"
 #include "npr/surface_samples.h"
 #include "passes/leaf_primitives.h"
+#include "tests/passes/front_view.h"
 
 namespace sylva::test {
 namespace {
 
-constexpr int kSize = 256;
-
-// An orthographic camera on +z looking at the origin, the view 4 units across.
-Camera front_camera() {
-  Camera c;
-  c.eye = {0, 0, 10};
-  c.view = glm::lookAt(c.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
-  c.proj = glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.1f, 100.0f);
-  c.ortho = true;
-  c.width = c.height = kSize;
-  return c;
-}
-
-// Where a world point lands in the frame of front_camera, px.
-cv::Point2f to_px(const glm::vec3& p) {
-  return {float((p.x + 2.0) / 4.0 * kSize), float((2.0 - p.y) / 4.0 * kSize)};
-}
+constexpr int kSize = kFrontSize;
 
 // A flat round leaf of radius r facing the camera: the covariance of a uniform disc.
 LeafPiece disc_piece(glm::vec3 centre, float r, uint32_t cluster) {

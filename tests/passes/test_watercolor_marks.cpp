@@ -11,25 +11,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "passes/watercolor_marks.h"
+#include "tests/passes/front_view.h"
 
 namespace sylva::test {
 namespace {
 
-constexpr int kSize = 256;
-
-Camera front_camera() {
-  Camera c;
-  c.eye = {0, 0, 10};
-  c.view = glm::lookAt(c.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
-  c.proj = glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.1f, 100.0f);
-  c.ortho = true;
-  c.width = c.height = kSize;
-  return c;
-}
-
-cv::Point to_px(const glm::vec3& p) {
-  return {int((p.x + 2.0) / 4.0 * kSize), int((2.0 - p.y) / 4.0 * kSize)};
-}
+constexpr int kSize = kFrontSize;
 
 // A flat leaf facing the camera, semi-axes rx (along x) and ry (along y).
 LeafPiece leaf(glm::vec3 centre, float rx, float ry) {
