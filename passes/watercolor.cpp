@@ -59,6 +59,15 @@ constexpr double kShadowCell = 4.0;
 // Paper relief shading of the bare paper at paper_strength 1 (light grazing the grain).
 constexpr float kPaperRelief = 0.10f;
 
+// Whether the frame's camera is known, so that positions come from the depth (ViewPositions).
+bool has_projection(const WatercolorImages& in) {
+  return in.camera.width > 0 && in.camera.height > 0;
+}
+
+watercolor_internal::ViewPositions view_positions(const WatercolorImages& in) {
+  return {in.position, in.depth, in.camera.proj};
+}
+
 // Checks the buffers the parameters need; true when the pigment is the albedo.
 bool check_inputs(const WatercolorImages& in, const WatercolorParams& p) {
   expect_image(in.id, CV_32SC1, cv::Size(), "id");
@@ -73,7 +82,8 @@ bool check_inputs(const WatercolorImages& in, const WatercolorParams& p) {
                        "(use \"shaded\")");
     expect_image(in.albedo, CV_8UC4, size, "albedo");
   }
-  if (p.turbulence_strength > 0.0f) expect_image(in.position, CV_32FC3, size, "position");
+  if (!in.position.empty() || (p.turbulence_strength > 0.0f && !has_projection(in)))
+    expect_image(in.position, CV_32FC3, size, "position");
   return use_albedo;
 }
 
@@ -340,7 +350,7 @@ cv::Mat turbulence_map(const WatercolorImages& in, const glm::mat4& view_to_worl
                        const WatercolorParams& p, float sigma) {
   const cv::Size size = in.depth.size();
   const watercolor_internal::CellPositions half =
-      watercolor_internal::cell_positions(in.position, in.depth, 2);
+      watercolor_internal::cell_positions(view_positions(in), 2);
   const cv::Mat &half_pos = half.mean, &half_cover = half.cover;
   cv::Mat half_turb = watercolor_turbulence(half_pos, half_cover, view_to_world, p);
   // Pigment that bled past the silhouette takes the turbulence of the nearest surface
@@ -393,6 +403,17 @@ cv::Mat on_paper(const cv::Mat& density, const cv::Mat& paper, const cv::Mat& gr
   return out;
 }
 
+// The washes back to front, their labels in s.label (s.seen); the full-size labels and parts
+// they are ordered by are freed on return.
+std::vector<Layer> ordered_layers(const WatercolorImages& in, bool use_albedo, Shared& s) {
+  cv::Mat first_label;
+  std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
+  finish_layers(layers, use_albedo, *s.srgb);
+  CrownParts parts;
+  if (in.samples) parts = scene_parts(in, s, layers);
+  return back_to_front(layers, first_label, in.samples ? &parts : nullptr, s);
+}
+
 // The images with the leaf clusters gathered into the crown's masses (watercolor.mass); `used`
 // says whether they were (with the scene's samples, a mass size and one plant).
 WatercolorImages with_masses(const WatercolorImages& in, const WatercolorParams& p, double scale,
@@ -420,13 +441,7 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   Shared s = shared_settings(in, p, scale);
   // A mass is laid in one wash: gaps up to kMassClose of its size are painted over.
   if (masses) s.close = float(kMassClose * p.mass * scale);
-  cv::Mat first_label;
-  std::vector<Layer> layers = gather_layers(in, use_albedo, s, first_label);
-  finish_layers(layers, use_albedo, *s.srgb);
-  CrownParts parts;
-  if (in.samples) parts = scene_parts(in, s, layers);
-  const std::vector<Layer> sorted =
-      back_to_front(layers, first_label, in.samples ? &parts : nullptr, s);
+  const std::vector<Layer> sorted = ordered_layers(in, use_albedo, s);
   const PaperField paper(p, scale);
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
@@ -435,9 +450,9 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   const bool wood = in.wood_cluster != 0;
   cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
                           wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
-  if (p.shadow > 0.0f && input.samples && !in.position.empty()) {
+  if (p.shadow > 0.0f && input.samples && (!in.position.empty() || has_projection(in))) {
     const int cell = std::max(1, int(std::lround(kShadowCell * scale)));
-    glaze_shadow(key_shadow(in.position, in.depth, view_to_world, *input.samples, input.light, cell,
+    glaze_shadow(key_shadow(view_positions(in), view_to_world, *input.samples, input.light, cell,
                             2.0f * std::max(s.sigma, 1.0f)),
                  p.shadow, p.warm_cool, density);
   }
@@ -454,9 +469,12 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
               "add_watercolor_pass: color, id and depth are required");
   const bool albedo = p.pigment == Pigment::Albedo;
   const bool turbulence = p.turbulence_strength > 0.0f;
-  const bool position = turbulence || (p.shadow > 0.0f && res.samples.valid());
+  // With the frame's camera the positions come from the depth (ViewPositions).
+  const bool position =
+      (turbulence || (p.shadow > 0.0f && res.samples.valid())) && res.camera.width <= 0;
   SYLVA_CHECK(!position || res.position.valid(),
-              "add_watercolor_pass: turbulence and the shadow glaze need the position buffer");
+              "add_watercolor_pass: turbulence and the shadow glaze need the position buffer or "
+              "the camera");
   std::vector<ResourceRef> reads{res.color, res.id, res.depth};
   if (albedo && res.albedo.valid()) reads.push_back(res.albedo);
   if (position) reads.push_back(res.position);
@@ -472,17 +490,13 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                    in.depth = ctx.read<cv::Mat>(res.depth);
                    if (albedo && res.albedo.valid()) in.albedo = ctx.read<cv::Mat>(res.albedo);
                    if (position) in.position = ctx.read<cv::Mat>(res.position);
-                   if (res.samples.valid()) {
+                   in.camera = res.camera;
+                   if (res.samples.valid())
                      in.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(res.samples);
-                     in.camera = res.camera;
-                   }
                    in.wood_cluster = res.wood_cluster;
                    in.units_per_px = res.units_per_px;
                    in.light = res.light;
-                   if (marks) {
-                     in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
-                     in.camera = res.camera;
-                   }
+                   if (marks) in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

@@ -136,15 +136,18 @@ struct WatercolorParams {
 };
 
 struct WatercolorImages {
-  cv::Mat color;     // CV_8UC4 BGRA sRGB shaded, alpha = coverage
-  cv::Mat albedo;    // CV_8UC4 BGRA sRGB; may be empty unless pigment = "albedo"
-  cv::Mat id;        // CV_32SC1, 0 background
-  cv::Mat depth;     // CV_32FC1 linear view depth, 0 background
-  cv::Mat position;  // CV_32FC3 view space; may be empty when turbulence_strength = shadow = 0
+  cv::Mat color;   // CV_8UC4 BGRA sRGB shaded, alpha = coverage
+  cv::Mat albedo;  // CV_8UC4 BGRA sRGB; may be empty unless pigment = "albedo"
+  cv::Mat id;      // CV_32SC1, 0 background
+  cv::Mat depth;   // CV_32FC1 linear view depth, 0 background
+  // CV_32FC3 view space; may be empty when the camera is given (the positions are then the
+  // depth's pixels unprojected: passes/watercolor_common.h ViewPositions) or when
+  // turbulence_strength = shadow = 0.
+  cv::Mat position;
   // The scene's surface samples (npr/surface_samples.h) and the frame's camera, or null: the
   // washes' shapes and order then come from the id buffer and its depths.
   std::shared_ptr<const SurfaceSamples> samples;
-  Camera camera;
+  Camera camera;  // the frame's (width 0 = unknown)
   // The cluster id of trunk and branches (0 = none): the wood's wash lies under the leaves'
   // washes, as a painter lays the trunk under the crown, and wherever the id buffer shows the
   // wood the leaves' washes leave it bare.
@@ -189,7 +192,7 @@ void bind_watercolor_params(ParamSet& set, WatercolorParams& p);
 struct WatercolorResources {
   ImageHandle color{}, albedo{}, id{}, depth{}, position{};
   SamplesHandle samples{};    // "surface-samples", or none
-  Camera camera;              // the frame's, with samples
+  Camera camera;              // the frame's (width 0 = none: positions from `position`)
   uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
   double units_per_px = 0.0;  // WatercolorImages::units_per_px
   LeafPiecesHandle pieces{};  // "leaf-pieces", or none (no marks)
@@ -198,7 +201,8 @@ struct WatercolorResources {
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only
 // for pigment = "albedo" (InputError at run time if it is -1 then), position only when
-// turbulence_strength > 0 or shadow > 0. The parameters are copied.
+// turbulence_strength > 0 or shadow > 0 and the camera is not given (width 0). The parameters
+// are copied.
 ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& res,
                                 const glm::mat4& view_to_world, const WatercolorParams& p);
 

@@ -53,7 +53,41 @@ cv::Mat blur(const cv::Mat& m, float sigma) {
   return out;
 }
 
-CellPositions cell_positions(const cv::Mat& position, const cv::Mat& depth, int cell) {
+namespace {
+
+// Pixel centres of a w x h image unprojected at a linear view depth: inverse(proj) applied to
+// (x_ndc, y_ndc, z_ndc, 1) is linear in x_ndc and y_ndc, so each row adds a step per pixel to
+// the points on the near (z_ndc = -1) and far (z_ndc = 1) planes; the point is where the ray
+// between them reaches view z = -depth.
+class Unprojector {
+ public:
+  Unprojector(const glm::mat4& proj, cv::Size size) : m_inv(glm::inverse(proj)) {
+    m_step_x = m_inv[0] * (2.0f / float(size.width));
+    m_step_y = m_inv[1] * (-2.0f / float(size.height));
+    m_first = m_inv * glm::vec4(1.0f / float(size.width) - 1.0f, 1.0f - 1.0f / float(size.height),
+                                0.0f, 1.0f);
+  }
+  cv::Vec3f at(int x, int y, float depth) const {
+    const glm::vec4 centre = m_first + float(x) * m_step_x + float(y) * m_step_y;
+    const glm::vec3 n = glm::vec3(centre - m_inv[2]) / (centre.w - m_inv[2].w);
+    const glm::vec3 f = glm::vec3(centre + m_inv[2]) / (centre.w + m_inv[2].w);
+    const float dz = f.z - n.z;
+    const float t = std::abs(dz) > 1e-20f ? (-depth - n.z) / dz : 0.0f;
+    const glm::vec3 p = n + t * (f - n);
+    return {p.x, p.y, p.z};
+  }
+
+ private:
+  glm::mat4 m_inv;
+  glm::vec4 m_first, m_step_x, m_step_y;
+};
+
+}  // namespace
+
+CellPositions cell_positions(const ViewPositions& view, int cell) {
+  const cv::Mat& depth = view.depth;
+  const bool buffer = !view.position.empty();
+  const Unprojector unproject(view.proj, depth.size());
   const cv::Size grid((depth.cols + cell - 1) / cell, (depth.rows + cell - 1) / cell);
   CellPositions out;
   out.mean = cv::Mat(grid, CV_32FC3, cv::Scalar::all(0));
@@ -61,14 +95,14 @@ CellPositions cell_positions(const cv::Mat& position, const cv::Mat& depth, int 
   cv::Mat count(grid, CV_32FC1, cv::Scalar(0));
   for (int y = 0; y < depth.rows; ++y) {
     const float* d = depth.ptr<float>(y);
-    const cv::Vec3f* p = position.ptr<cv::Vec3f>(y);
+    const cv::Vec3f* p = buffer ? view.position.ptr<cv::Vec3f>(y) : nullptr;
     cv::Vec3f* m = out.mean.ptr<cv::Vec3f>(y / cell);
     float* c = out.cover.ptr<float>(y / cell);
     float* n = count.ptr<float>(y / cell);
     for (int x = 0; x < depth.cols; ++x) {
       n[x / cell] += 1.0f;
       if (d[x] > 0.0f) {
-        m[x / cell] += p[x];
+        m[x / cell] += p ? p[x] : unproject.at(x, y, d[x]);
         c[x / cell] += 1.0f;
       }
     }

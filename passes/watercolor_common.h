@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -80,13 +81,24 @@ inline float wash_cover(const cv::Vec3f& d) {
   return std::min(1.0f, (d[0] + d[1] + d[2]) / kCoveringDensity);
 }
 
+// Where a pixel's view-space position comes from: the position buffer (CV_32FC3), or, where it
+// is empty, the pixel's centre at its linear view depth (the depth target's meaning: distance
+// along -Z) unprojected through the frame's projection `proj` (perspective or orthographic).
+// The same point without a full-size buffer of them (at 4096² the position target costs
+// 0.45 GB between the GL framebuffer and its read-back).
+struct ViewPositions {
+  cv::Mat position;  // CV_32FC3 or empty
+  cv::Mat depth;     // CV_32FC1, 0 = background
+  glm::mat4 proj{1.0f};
+};
+
 // The mean view-space position (CV_32FC3) of the covered pixels (depth > 0) of each cell of
 // `cell` x `cell` px (the grid rounds up), and the share of the cell they cover (CV_32FC1);
 // (0, 0, 0) and 0 where none. Read row by row: no full-size copy is made.
 struct CellPositions {
   cv::Mat mean, cover;
 };
-CellPositions cell_positions(const cv::Mat& position, const cv::Mat& depth, int cell);
+CellPositions cell_positions(const ViewPositions& view, int cell);
 
 // Gaussian blur with sigma in px (border replicated); below 0.3 px a copy.
 cv::Mat blur(const cv::Mat& m, float sigma);

@@ -236,11 +236,31 @@ cv::Vec3f gradation(const Shared& s, const Layer& layer, float soft_luminance, c
   return c;
 }
 
+// Under a nearer wash only part of what lies behind shows (kUnderStrength where it covers
+// fully): the glaze over it darkens less than two full washes, as a painter's dilute overlaps
+// do, and weakens exactly where the nearer wash lies, so their borders meet without a band of
+// doubled pigment or of bare paper.
+inline float under(float coverage) {
+  return 1.0f - (1.0f - kUnderStrength) * coverage;
+}
+
+// One row of a wash (`wash`, `cover`, w px from image column x0 of row y) glazed into `g`.
+void glaze_row(GlazeInto& g, int x0, int y, int w, const cv::Vec3f* wash, const float* cover) {
+  cv::Vec3f* d = g.density.ptr<cv::Vec3f>(y) + x0;
+  for (int x = 0; x < w; ++x)
+    d[x] = (g.weaken ? d[x] * under(cover[x]) : d[x]) + wash[x];
+  const cv::Rect& r = g.bark_roi;
+  if (!g.weaken || g.bark.empty() || y < r.y || y >= r.br().y) return;
+  cv::Vec3f* b = g.bark.ptr<cv::Vec3f>(y - r.y);
+  for (int x = std::max(x0, r.x); x < std::min(x0 + w, r.br().x); ++x)
+    b[x - r.x] *= under(cover[x - x0]);
+}
+
 // The wash's optical density over the roi (out.density) and its coverage (out.coverage): the
 // wobbled mask thresholded, darkened at its rim, tinted with the layer's pigment and its
 // leaves' detail.
 void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& b,
-                  const cv::Mat& mask, const SmallFields& small, LayerOut& out) {
+                  const cv::Mat& mask, const SmallFields& small, GlazeInto* into, LayerOut& out) {
   const cv::Rect roi = out.roi;
   const int w = roi.width, h = roi.height;
   const bool detail = s.detail > 0.0f;
@@ -249,9 +269,13 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
   const float grad_norm = 0.5f * std::max(s.sigma, 0.5f) * kSqrt2Pi;  // 0.5: central difference
   const float lo = 0.5f - s.half_width, hi = 0.5f + s.half_width;
   const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
-  out.density.create(h, w, CV_32FC3);
-  out.coverage.create(h, w, CV_32F);
+  if (!into) {
+    out.density.create(h, w, CV_32FC3);
+    out.coverage.create(h, w, CV_32F);
+  }
   for_bands(h, [&](int y0, int y1) {
+    std::vector<cv::Vec3f> wash_row(into ? size_t(w) : 0);
+    std::vector<float> cover_row(into ? size_t(w) : 0);
     for (int y = y0; y < y1; ++y) {
       const float* m = mask.ptr<float>(y);
       const float* mu = mask.ptr<float>(std::max(y - 1, 0));
@@ -263,8 +287,8 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
       const float* soft =
           s.soft_luminance.empty() ? nullptr : s.soft_luminance.ptr<float>(roi.y + y) + roi.x;
       const float sy = b.at(y);
-      cv::Vec3f* t = out.density.ptr<cv::Vec3f>(y);
-      float* cov = out.coverage.ptr<float>(y);
+      cv::Vec3f* t = into ? wash_row.data() : out.density.ptr<cv::Vec3f>(y);
+      float* cov = into ? cover_row.data() : out.coverage.ptr<float>(y);
       for (int x = 0; x < w; ++x) {
         const float alpha = smoothstep(lo, hi, m[x]);
         cov[x] = alpha;
@@ -282,30 +306,14 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
         for (int ch = 0; ch < 3; ++ch)
           t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
       }
+      if (into) glaze_row(*into, roi.x, roi.y + y, w, t, cov);
     }
   });
 }
 
 }  // namespace
 
-namespace {
-
-// Under a nearer wash only part of what lies behind shows (kUnderStrength where it covers
-// fully): the glaze over it darkens less than two full washes, as a painter's dilute overlaps
-// do, and weakens exactly where the nearer wash lies, so their borders meet without a band of
-// doubled pigment or of bare paper.
-void under_nearer(cv::Mat& behind, const cv::Mat& coverage) {
-  for (int y = 0; y < behind.rows; ++y) {
-    cv::Vec3f* d = behind.ptr<cv::Vec3f>(y);
-    const float* c = coverage.ptr<float>(y);
-    for (int x = 0; x < behind.cols; ++x)
-      d[x] *= 1.0f - (1.0f - kUnderStrength) * c[x];
-  }
-}
-
-}  // namespace
-
-LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
+LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into) {
   LayerOut out;
   out.roi = layer_roi(s, layer);
   // The masks are blurred at 1/f of the resolution (they are smooth after the blur).
@@ -316,7 +324,7 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
   const BlockMasks blurred = blur_masks(blocks, s.sigma / float(scale.f), detail);
   const SmallFields small = continue_under_occluders(blurred, detail);
   const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);
-  wash_density(s, layer, k, scale, mask, small, out);
+  wash_density(s, layer, k, scale, mask, small, into, out);
   return out;
 }
 
@@ -328,38 +336,41 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k) {
 cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
               const cv::Mat& wood_seen) {
   cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
-  cv::Mat bark = wood_seen.empty() ? density : cv::Mat(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
+  const bool apart = !wood_seen.empty();  // the wood's wash kept apart, composed at the end
+  cv::Mat bark;                           // the wood's wash over bark_roi
+  cv::Rect bark_roi;
   const Layer* wood_layer = nullptr;
   // One wash at a time (each painted by all threads), glazed as soon as it is painted: only one
   // wash is held at once, however many layers there are.
   for (size_t k = 0; k < sorted.size(); ++k) {
-    const LayerOut L = paint_layer(s, sorted[k], int(k));
     const bool is_wood = wood != 0 && sorted[k].id == wood;
     if (is_wood) wood_layer = &sorted[k];
-    cv::Mat dst = (is_wood ? bark : density)(L.roi);
-    if (!is_wood) {
-      under_nearer(dst, L.coverage);
-      if (bark.data != density.data) {
-        cv::Mat under = bark(L.roi);
-        under_nearer(under, L.coverage);
-      }
+    if (is_wood && apart) {
+      const LayerOut L = paint_layer(s, sorted[k], int(k));
+      bark = L.density;
+      bark_roi = L.roi;
+      continue;
     }
-    cv::add(dst, L.density, dst);
+    GlazeInto into{density, bark, bark_roi, !is_wood};
+    paint_layer(s, sorted[k], int(k), &into);
   }
-  if (wood_seen.empty()) return density;
+  if (!apart) return density;
   // Twigs the wood's wash (its trunk and main branches) leaves out are painted in its pigment
   // too, where they are seen: no streak of bare paper through the crown.
   cv::Vec3f twig(0.0f, 0.0f, 0.0f);
   if (wood_layer)
     for (int ch = 0; ch < 3; ++ch)
       twig[ch] = to_density(*s.srgb, std::min(wood_layer->pigment_display[ch], 1.0f));
+  const cv::Vec3f bare(0.0f, 0.0f, 0.0f);
   for_bands(s.size.height, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       cv::Vec3f* d = density.ptr<cv::Vec3f>(y);
-      const cv::Vec3f* b = bark.ptr<cv::Vec3f>(y);
+      const bool row = y >= bark_roi.y && y < bark_roi.br().y;
+      const cv::Vec3f* b = row ? bark.ptr<cv::Vec3f>(y - bark_roi.y) : nullptr;
       const float* seen = wood_seen.ptr<float>(y);
       for (int x = 0; x < s.size.width; ++x) {
-        cv::Vec3f wood_here = b[x];
+        const bool in_bark = b && x >= bark_roi.x && x < bark_roi.br().x;
+        cv::Vec3f wood_here = in_bark ? b[x - bark_roi.x] : bare;
         for (int ch = 0; ch < 3; ++ch)
           wood_here[ch] = std::max(wood_here[ch], seen[x] * twig[ch]);
         d[x] = wood_here + d[x] * (1.0f - seen[x]);

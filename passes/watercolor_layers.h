@@ -79,9 +79,20 @@ struct Shared {
   const SrgbTables* srgb = nullptr;
 };
 
+// Where a wash goes when it is glazed as it is painted, row by row, with no buffer of the wash
+// itself: over `density` (the full-size glaze so far; with `weaken`, what lies behind is first
+// weakened where the wash covers it, as under a nearer wash), and `bark` (the wood's wash over
+// bark_roi, or empty) weakened alike.
+struct GlazeInto {
+  cv::Mat density;
+  cv::Mat bark;
+  cv::Rect bark_roi;
+  bool weaken = true;
+};
+
 // Layer `k` (its index back to front in Shared::label) painted over its bounding box, padded by
-// the blur and the wobble.
-LayerOut paint_layer(const Shared& s, const Layer& layer, int k);
+// the blur and the wobble. With `into` it is glazed there at once and only out.roi is set.
+LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into = nullptr);
 
 // Every layer of `sorted` painted and glazed (their optical densities added, back to front):
 // CV_32FC3 over the image. The wood's wash (layer id `wood`, 0 = none) lies under the leaves',

@@ -34,12 +34,12 @@ cv::Vec3f glaze_colour(float w) {
 
 }  // namespace
 
-cv::Mat key_shadow(const cv::Mat& position, const cv::Mat& depth, const glm::mat4& view_to_world,
+cv::Mat key_shadow(const ViewPositions& view, const glm::mat4& view_to_world,
                    const SurfaceSamples& samples, const KeyLight& light, int cell, float sigma) {
   if (!light.on || light.sphere.empty() || samples.size() == 0) return {};
   const SampleShadow map =
       sample_shadow_map(samples, light.sphere, light.toward, light.point, kShadowMapSize, kReach);
-  const CellPositions cells = cell_positions(position, depth, cell);
+  const CellPositions cells = cell_positions(view, cell);
   const cv::Mat& small_cover = cells.cover;
   cv::Mat shade(small_cover.size(), CV_32F, cv::Scalar(0));
   for (int y = 0; y < shade.rows; ++y) {

@@ -14,14 +14,15 @@
 
 #include "npr/surface_samples.h"
 #include "passes/leaf_primitives.h"
+#include "passes/watercolor_common.h"
 
 namespace sylva::watercolor_internal {
 
 // The share of the key light that does not reach each place of the plant (0 lit, 1 in full
 // shadow), CV_32FC1 on a grid of `cell` px cells over the image of `depth`'s size, blurred by
-// `sigma` px: from the view-space positions (CV_32FC3) of the covered pixels (depth > 0),
-// through view_to_world. Empty without a key light (light.on false or an empty sphere).
-cv::Mat key_shadow(const cv::Mat& position, const cv::Mat& depth, const glm::mat4& view_to_world,
+// `sigma` px: from the view-space positions of the covered pixels (depth > 0), through
+// view_to_world. Empty without a key light (light.on false or an empty sphere).
+cv::Mat key_shadow(const ViewPositions& view, const glm::mat4& view_to_world,
                    const SurfaceSamples& samples, const KeyLight& light, int cell, float sigma);
 
 // The shadow glaze over `density` (CV_32FC3, the glazed washes): per pixel the shadow (bilinear

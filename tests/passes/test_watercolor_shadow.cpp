@@ -2,17 +2,21 @@
 // light and part of a wall of leaves shades that part and not the rest; the shadow is soft (it
 // changes gradually across the slab's edge) and follows the world, not the pixels; the glaze
 // darkens only where there is paint, more where the shadow is deeper, and turns from the
-// pigment's neutral darkening to a cool (blue over red) glaze with warm_cool. Every parameter
-// at both ends: tests/styles/test_every_parameter.cpp.
+// pigment's neutral darkening to a cool (blue over red) glaze with warm_cool. The positions it
+// reads, unprojected from the depth, are the rasteriser's. Every parameter at both ends:
+// tests/styles/test_every_parameter.cpp.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "passes/watercolor_shadow.h"
+#include "tests/core/gl/raster_scenes.h"
 
 namespace sylva::test {
 namespace {
 
+using watercolor_internal::cell_positions;
+using watercolor_internal::CellPositions;
 using watercolor_internal::glaze_shadow;
 using watercolor_internal::key_shadow;
 
@@ -67,21 +71,22 @@ float at_x(const cv::Mat& shadow, float world_x) {
 
 TEST(WatercolorShadow, TheLeavesBetweenTheLightAndTheWallShadeIt) {
   const Wall wall;
-  const cv::Mat shadow = key_shadow(wall.position, wall.depth, glm::mat4(1.0f), leaves(true),
-                                    light_from_front(), 4, 4.0f);
+  const cv::Mat shadow = key_shadow({wall.position, wall.depth, glm::mat4(1.0f)}, glm::mat4(1.0f),
+                                    leaves(true), light_from_front(), 4, 4.0f);
   ASSERT_FALSE(shadow.empty());
   EXPECT_GT(at_x(shadow, 0.7f), 0.3f) << "behind the slab";
   EXPECT_LT(at_x(shadow, -0.7f), 0.1f) << "in the open";
   // Soft: across the slab's edge the shadow grows through intermediate values.
   EXPECT_GT(at_x(shadow, 0.0f), at_x(shadow, -0.7f) + 0.05f);
   EXPECT_LT(at_x(shadow, 0.0f), at_x(shadow, 0.7f) - 0.05f);
-  const cv::Mat open = key_shadow(wall.position, wall.depth, glm::mat4(1.0f), leaves(false),
-                                  light_from_front(), 4, 4.0f);
+  const cv::Mat open = key_shadow({wall.position, wall.depth, glm::mat4(1.0f)}, glm::mat4(1.0f),
+                                  leaves(false), light_from_front(), 4, 4.0f);
   EXPECT_LT(at_x(open, 0.7f), 0.1f) << "no slab, no shadow";
   KeyLight off = light_from_front();
   off.on = false;
-  EXPECT_TRUE(
-      key_shadow(wall.position, wall.depth, glm::mat4(1.0f), leaves(true), off, 4, 4.0f).empty());
+  EXPECT_TRUE(key_shadow({wall.position, wall.depth, glm::mat4(1.0f)}, glm::mat4(1.0f),
+                         leaves(true), off, 4, 4.0f)
+                  .empty());
 }
 
 TEST(WatercolorShadow, TheShadowFollowsTheWorld) {
@@ -92,8 +97,8 @@ TEST(WatercolorShadow, TheShadowFollowsTheWorld) {
     for (int x = 0; x < kSize; ++x)
       moved.position.at<cv::Vec3f>(y, x)[0] -= 0.5f;
   const glm::mat4 to_world = glm::translate(glm::mat4(1.0f), {0.5f, 0.0f, 0.0f});
-  const cv::Mat shadow =
-      key_shadow(moved.position, moved.depth, to_world, leaves(true), light_from_front(), 4, 4.0f);
+  const cv::Mat shadow = key_shadow({moved.position, moved.depth, glm::mat4(1.0f)}, to_world,
+                                    leaves(true), light_from_front(), 4, 4.0f);
   // Image x of world x is now world x - 0.5.
   EXPECT_GT(at_x(shadow, 0.2f), 0.3f) << "world x 0.7, behind the slab";
   EXPECT_LT(at_x(shadow, -0.9f), 0.1f) << "world x -0.4, in the open";
@@ -119,6 +124,33 @@ TEST(WatercolorShadow, TheGlazeDarkensPaintByTheShadowInItsHue) {
   cv::Mat none = density.clone();
   glaze_shadow(shadow, 0.0f, 1.0f, none);
   EXPECT_EQ(cv::norm(none, density, cv::NORM_INF), 0.0) << "strength 0";
+}
+
+// The view-space positions the shadow and the turbulence read come from the depth through the
+// camera (no position buffer): per cell they are the rasteriser's position target, in a
+// perspective and an orthographic view of a sphere, in a picture wider than high.
+TEST(WatercolorShadow, PositionsFromTheDepthAreTheRasterisersPositions) {
+  Mesh ball;
+  add_sphere(ball, glm::vec3(0.3f, -0.2f, 0.1f), 1.0f, 48, 24);
+  set_ids(ball, 1, 1);
+  const Scene scene = scene_of({ball});
+  for (bool ortho : {false, true}) {
+    OrbitParams p;
+    p.azimuth_deg = 30.0f;
+    p.elevation_deg = 20.0f;
+    p.ortho = ortho;
+    const Camera cam = make_orbit_camera(scene.bounds(), p, 96, 64);
+    Rasterizer r(gl());
+    r.upload(scene);
+    const GBuffer g =
+        r.render(cam, Lighting::three_point(), request_of(Target::Depth | Target::Position));
+    const CellPositions drawn = cell_positions({g.position, g.depth, cam.proj}, 4);
+    const CellPositions unprojected = cell_positions({cv::Mat(), g.depth, cam.proj}, 4);
+    EXPECT_EQ(cv::norm(drawn.cover, unprojected.cover, cv::NORM_INF), 0.0) << "ortho " << ortho;
+    EXPECT_GT(cv::countNonZero(drawn.cover), 50) << "ortho " << ortho;  // of 24 x 16 cells
+    // The sphere (radius 1) lies 2-5 units away: 1e-3 is well under a pixel's width there.
+    EXPECT_LT(cv::norm(drawn.mean, unprojected.mean, cv::NORM_INF), 1e-3) << "ortho " << ortho;
+  }
 }
 
 }  // namespace

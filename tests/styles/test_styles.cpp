@@ -42,7 +42,8 @@ TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
   } cases[] = {
       {"standard", Target::Id | Target::Normal | Target::Albedo},
       {"toon", Target::Id | Target::Color | Target::Depth},
-      {"watercolor", Target::Normal | Target::Albedo},
+      // watercolor: positions come from the depth through the frame's camera.
+      {"watercolor", Target::Normal | Target::Albedo | Target::Position},
       // blobs: cluster ids, colour, albedo and depth; the preset's silhouettes use no normals.
       {"blobs", Target::Normal | Target::Position | Target::Ka},
   };
@@ -59,6 +60,7 @@ TEST(Styles, EachStyleRasterisesOnlyWhatItReads) {
     StyleContext context;
     context.lighting = s.rs.lighting;
     context.view = s.rs.camera.view;
+    context.camera = s.rs.camera;
     const ImageHandle out = style.build(graph, gb, context).image;
     graph.present(out);
     graph.execute();
