@@ -437,19 +437,28 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   const bool use_albedo = check_inputs(input, p);
   const double scale = reference_scale(input.id.size());
   bool masses = false;
-  const WatercolorImages in = with_masses(input, p, scale, masses);
+  WatercolorImages in = with_masses(input, p, scale, masses);
   Shared s = shared_settings(in, p, scale);
   // A mass is laid in one wash: gaps up to kMassClose of its size are painted over.
   if (masses) s.close = float(kMassClose * p.mass * scale);
   const std::vector<Layer> sorted = ordered_layers(in, use_albedo, s);
+  // The masses' ids are read only to order the washes: the plant's pixels and the wood's are
+  // the id buffer's own.
+  in.id = input.id;
   const PaperField paper(p, scale);
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
   if (p.gradation > 0.0f || p.warm_cool > 0.0f)
     s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;
-  cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0,
-                          wood ? seen_wood(in.id, in.wood_cluster, scale) : cv::Mat());
+  std::function<cv::Mat()> wood_seen;
+  if (wood) wood_seen = [&] { return seen_wood(in.id, in.wood_cluster, scale); };
+  cv::Mat density = glaze(s, sorted, wood ? int32_t(in.wood_cluster) : 0, wood_seen);
+  // Only the labels (the paper's grain per wash) are read after the glaze.
+  s.rim_ok.release();
+  s.soft_luminance.release();
+  s.luminance.release();
+  s.seen.release();
   if (p.shadow > 0.0f && input.samples && (!in.position.empty() || has_projection(in))) {
     const int cell = std::max(1, int(std::lround(kShadowCell * scale)));
     glaze_shadow(key_shadow(view_positions(in), view_to_world, *input.samples, input.light, cell,

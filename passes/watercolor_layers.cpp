@@ -246,7 +246,7 @@ inline float under(float coverage) {
 
 // One row of a wash (`wash`, `cover`, w px from image column x0 of row y) glazed into `g`.
 void glaze_row(GlazeInto& g, int x0, int y, int w, const cv::Vec3f* wash, const float* cover) {
-  cv::Vec3f* d = g.density.ptr<cv::Vec3f>(y) + x0;
+  cv::Vec3f* d = g.density.ptr<cv::Vec3f>(y - g.origin.y) + (x0 - g.origin.x);
   for (int x = 0; x < w; ++x)
     d[x] = (g.weaken ? d[x] * under(cover[x]) : d[x]) + wash[x];
   const cv::Rect& r = g.bark_roi;
@@ -283,9 +283,8 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
       const int32_t* lab = seen.ptr<int32_t>(roi.y + y) + roi.x;
       const float* lum = s.luminance.ptr<float>(roi.y + y) + roi.x;
       const float* dep = s.depth.ptr<float>(roi.y + y) + roi.x;
-      const float* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<float>(roi.y + y) + roi.x;
-      const float* soft =
-          s.soft_luminance.empty() ? nullptr : s.soft_luminance.ptr<float>(roi.y + y) + roi.x;
+      const uint8_t* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<uint8_t>(roi.y + y) + roi.x;
+      const bool soft = !s.soft_luminance.empty();
       const float sy = b.at(y);
       cv::Vec3f* t = into ? wash_row.data() : out.density.ptr<cv::Vec3f>(y);
       float* cov = into ? cover_row.data() : out.coverage.ptr<float>(y);
@@ -297,12 +296,12 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
           continue;
         }
         const float sx = b.at(x);
-        const float rim = rim_ok ? rim_ok[x] : 1.0f;
+        const float rim = rim_ok ? float(rim_ok[x]) * (1.0f / 255.0f) : 1.0f;
         const float d = rim_darkening(mu, m, md, x, w, grad_norm, s.edge_gain * rim);
         cv::Vec3f c = detail && lab[x] == k
                           ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
                           : layer.pigment_display;
-        if (soft) c = gradation(s, layer, soft[x], c);
+        if (soft) c = gradation(s, layer, s.soft_at(roi.x + x, roi.y + y), c);
         for (int ch = 0; ch < 3; ++ch)
           t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
       }
@@ -331,12 +330,12 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into
 // Every layer painted, then glazed: the densities of transparent washes add (their
 // transmittances multiply), back to front (a fixed order keeps the bytes fixed). The wood's
 // wash (id `wood`, 0 = none) is laid first, under the leaves, and where the id buffer shows
-// wood (`wood_seen`, CV_32FC1 in [0, 1]; empty = none) the leaves' washes leave it bare: the
+// wood (`wood_seen`, CV_8UC1, 255 = wood; no function = none) the leaves' washes leave it bare: the
 // trunk and branches are painted wherever they are seen, through the gaps of the crown.
 cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
-              const cv::Mat& wood_seen) {
+              const std::function<cv::Mat()>& wood_seen_of) {
   cv::Mat density(s.size, CV_32FC3, cv::Scalar(0, 0, 0));
-  const bool apart = !wood_seen.empty();  // the wood's wash kept apart, composed at the end
+  const bool apart = bool(wood_seen_of);  // the wood's wash kept apart, composed at the end
   cv::Mat bark;                           // the wood's wash over bark_roi
   cv::Rect bark_roi;
   const Layer* wood_layer = nullptr;
@@ -346,15 +345,17 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
     const bool is_wood = wood != 0 && sorted[k].id == wood;
     if (is_wood) wood_layer = &sorted[k];
     if (is_wood && apart) {
-      const LayerOut L = paint_layer(s, sorted[k], int(k));
-      bark = L.density;
-      bark_roi = L.roi;
+      bark_roi = layer_roi(s, sorted[k]);
+      bark = cv::Mat(bark_roi.size(), CV_32FC3, cv::Scalar(0, 0, 0));
+      GlazeInto into{bark, {}, {}, false, bark_roi.tl()};
+      paint_layer(s, sorted[k], int(k), &into);
       continue;
     }
     GlazeInto into{density, bark, bark_roi, !is_wood};
     paint_layer(s, sorted[k], int(k), &into);
   }
   if (!apart) return density;
+  const cv::Mat wood_seen = wood_seen_of();
   // Twigs the wood's wash (its trunk and main branches) leaves out are painted in its pigment
   // too, where they are seen: no streak of bare paper through the crown.
   cv::Vec3f twig(0.0f, 0.0f, 0.0f);
@@ -367,13 +368,14 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
       cv::Vec3f* d = density.ptr<cv::Vec3f>(y);
       const bool row = y >= bark_roi.y && y < bark_roi.br().y;
       const cv::Vec3f* b = row ? bark.ptr<cv::Vec3f>(y - bark_roi.y) : nullptr;
-      const float* seen = wood_seen.ptr<float>(y);
+      const uint8_t* seen8 = wood_seen.ptr<uint8_t>(y);
       for (int x = 0; x < s.size.width; ++x) {
         const bool in_bark = b && x >= bark_roi.x && x < bark_roi.br().x;
         cv::Vec3f wood_here = in_bark ? b[x - bark_roi.x] : bare;
+        const float seen = float(seen8[x]) * (1.0f / 255.0f);
         for (int ch = 0; ch < 3; ++ch)
-          wood_here[ch] = std::max(wood_here[ch], seen[x] * twig[ch]);
-        d[x] = wood_here + d[x] * (1.0f - seen[x]);
+          wood_here[ch] = std::max(wood_here[ch], seen * twig[ch]);
+        d[x] = wood_here + d[x] * (1.0f - seen);
       }
     }
   });

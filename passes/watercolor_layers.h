@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -63,13 +64,20 @@ struct Shared {
   float half_width = 0.5f;            // of the threshold smoothstep
   float edge_gain = 0;                // d - 1 at the steepest edge, <= 1 (d = 2: twice the pigment)
   float detail = 0;
-  // Where a wash's rim may darken (CV_32FC1 in [0, 1]): along the foliage's outer edge and where
-  // a nearer wash stands in front of a farther one by a depth step, not along every border
-  // between neighbouring clusters. Empty: everywhere.
+  // Where a wash's rim may darken (CV_8UC1, 255 = fully): along the foliage's outer edge and
+  // where a nearer wash stands in front of a farther one by a depth step, not along every
+  // border between neighbouring clusters. Empty: everywhere.
   cv::Mat rim_ok;
   // The shaded luminance smoothed over the plant at the washes' scale (CV_32FC1, display
-  // values): the wet-in-wet gradation of value inside a wash follows it by `gradation`.
+  // values, at a quarter of the resolution: soft_at): the wet-in-wet gradation of value inside
+  // a wash follows it by `gradation`.
   cv::Mat soft_luminance;
+  // soft_luminance at image pixel (x, y), bilinear (as cv::resize's INTER_LINEAR samples it).
+  float soft_at(int x, int y) const {
+    const float fx = float(soft_luminance.cols) / float(size.width);
+    const float fy = float(soft_luminance.rows) / float(size.height);
+    return sample(soft_luminance, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
+  }
   float gradation = 0;
   float warm_cool = 0;  // watercolor.warm_cool: the lit side warmer, the shaded side cooler
   // Gaps in a mass's wash smaller than this (px; the closing's radius) are painted over where
@@ -88,6 +96,7 @@ struct GlazeInto {
   cv::Mat bark;
   cv::Rect bark_roi;
   bool weaken = true;
+  cv::Point origin{0, 0};  // the image pixel at density's (0, 0)
 };
 
 // Layer `k` (its index back to front in Shared::label) painted over its bounding box, padded by
@@ -96,8 +105,9 @@ LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into
 
 // Every layer of `sorted` painted and glazed (their optical densities added, back to front):
 // CV_32FC3 over the image. The wood's wash (layer id `wood`, 0 = none) lies under the leaves',
-// which leave it bare where `wood_seen` (CV_32FC1 in [0, 1], empty = none) shows it.
+// which leave it bare where `wood_seen()` (CV_8UC1, 255 = wood; no function = none) shows it,
+// asked for once the washes are painted.
 cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
-              const cv::Mat& wood_seen);
+              const std::function<cv::Mat()>& wood_seen);
 
 }  // namespace sylva::watercolor_internal

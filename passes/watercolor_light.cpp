@@ -35,18 +35,19 @@ cv::Mat rim_allowed(const Shared& s, const std::vector<Layer>& sorted, float rim
   cv::Mat dist;
   cv::distanceTransform(free, dist, cv::DIST_L2, 3);
   const float reach = 2.0f * s.sigma + s.max_wobble + 2.0f;
-  cv::Mat out(s.size, CV_32F);
+  cv::Mat out(s.size, CV_8U);
   for (int y = 0; y < s.size.height; ++y) {
     const float* d = dist.ptr<float>(y);
-    float* o = out.ptr<float>(y);
+    uint8_t* o = out.ptr<uint8_t>(y);
     for (int x = 0; x < s.size.width; ++x)
-      o[x] = 1.0f - smoothstep(reach, 1.5f * reach, d[x]);
+      o[x] = uint8_t(std::lround(255.0f * (1.0f - smoothstep(reach, 1.5f * reach, d[x]))));
   }
   return out;
 }
 
 // The shaded luminance smoothed over the plant's pixels only (normalised convolution at a
-// quarter of the resolution), at twice the wash blur: what a wash's gradation follows.
+// quarter of the resolution, where it is kept: Shared::soft_at), at twice the wash blur: what a
+// wash's gradation follows.
 cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered) {
   const cv::Size small((s.size.width + 3) / 4, (s.size.height + 3) / 4);
   cv::Mat cover, lum, c_small, l_small;
@@ -57,21 +58,19 @@ cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered) {
   const float sigma = std::max(2.0f * s.sigma, 3.0f) / 4.0f;
   cv::Mat ratio;
   cv::divide(blur(l_small, sigma), cv::max(blur(c_small, sigma), 1e-4), ratio);
-  cv::Mat out;
-  cv::resize(ratio, out, s.size, 0, 0, cv::INTER_LINEAR);
-  return out;
+  return ratio;
 }
 
 // Where the id buffer shows the wood cluster at least 3 px wide at 1024 px (an opening: the
 // trunk and branches a painter paints, not the pixel-thin twigs that come and go as the view
-// turns), a little softened (CV_32FC1 in [0, 1]).
+// turns), a little softened (CV_8UC1, 255 = wood).
 cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale) {
   cv::Mat mask = id == int32_t(wood_cluster), seen;
   const int r = std::max(1, int(std::lround(1.5 * scale)));
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN,
                    cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
-  mask.convertTo(seen, CV_32F, 1.0 / 255.0);
-  return blur(seen, 0.7f);
+  cv::GaussianBlur(mask, seen, cv::Size(0, 0), 0.7, 0.7, cv::BORDER_REPLICATE);
+  return seen;
 }
 
 }  // namespace sylva::watercolor_internal

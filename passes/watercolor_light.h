@@ -10,18 +10,19 @@
 
 namespace sylva::watercolor_internal {
 
-// Shared::rim_ok for the layers `sorted` (back to front, Shared::label indexing them): 1 within
+// Shared::rim_ok for the layers `sorted` (back to front, Shared::label indexing them): 255 within
 // reach of the blur and wobble of the foliage's outer edge or of a border between two washes
 // whose order depths differ by more than rim_step (in [0, 1]) of their depth range, fading to 0
-// beyond.
+// beyond (CV_8UC1).
 cv::Mat rim_allowed(const Shared& s, const std::vector<Layer>& sorted, float rim_step);
 
 // Shared::soft_luminance: Shared::luminance averaged over the `covered` pixels (CV_8UC1
-// non-zero) only, with a Gaussian of twice the wash blur (at least 3 px).
+// non-zero) only, with a Gaussian of twice the wash blur (at least 3 px), at a quarter of the
+// image's resolution (the grid rounds up; Shared::soft_at reads it).
 cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
 
 // Where the id buffer (CV_32SC1) shows the wood cluster at least 3 px wide at 1024 px (`scale`
-// = the image's size over 1024, reference_scale), softened by 0.7 px: CV_32FC1 in [0, 1].
+// = the image's size over 1024, reference_scale), softened by 0.7 px: CV_8UC1, 255 = wood.
 cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale);
 
 }  // namespace sylva::watercolor_internal

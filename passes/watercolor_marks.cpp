@@ -59,7 +59,7 @@ void mark_wood(const WatercolorMarkImages& in, double scale, LeafLayer& work) {
              0, 0, cv::INTER_AREA);
   for (int y = 0; y < seen.rows; ++y)
     for (int x = 0; x < seen.cols; ++x)
-      if (seen.at<float>(y, x) > 0.5f) work.front.at<int>(y, x) = kWoodFront;
+      if (seen.at<uint8_t>(y, x) > 127) work.front.at<int>(y, x) = kWoodFront;
 }
 
 // The crown's depth blurred over its own pixels (normalised convolution), at the working size.
