@@ -109,17 +109,29 @@ Shared shared_settings(const WatercolorImages& in, const WatercolorParams& p, do
   return s;
 }
 
-// Pixel (x, y) of cluster `L` added to its sums; returns the pixel's display luminance.
+// The share of the clear colour (linear BGR) in a pixel of coverage alpha: with a transparent
+// clear of some colour, (1 - alpha) of it; with an opaque or black one nothing can (or need) be
+// taken out.
+cv::Vec3f clear_bgr(const glm::vec4& clear) {
+  if (clear.a > 0.0f) return {0.0f, 0.0f, 0.0f};
+  const glm::vec3 c = glm::clamp(glm::vec3(clear), 0.0f, 1.0f);
+  return {c.b, c.g, c.r};
+}
+
+// Pixel (x, y) of cluster `L` added to its sums; returns the pixel's display luminance. `clear`
+// (clear_bgr) is taken out of the colour: what remains is the leaf's, premultiplied.
 float add_pixel(Layer& L, int x, int y, const cv::Vec4b& col, const cv::Vec4b* alb, float depth,
-                const SrgbTables& srgb) {
+                const cv::Vec3f& clear, const SrgbTables& srgb) {
   ++L.count;
   L.x0 = std::min(L.x0, x);
   L.x1 = std::max(L.x1, x);
   L.y1 = y;
   const float a = float(col[3]) / 255.0f;
   cv::Vec3f c(srgb.to_linear[col[0]], srgb.to_linear[col[1]], srgb.to_linear[col[2]]);
-  for (int ch = 0; ch < 3; ++ch)
+  for (int ch = 0; ch < 3; ++ch) {
+    c[ch] = std::max(0.0f, c[ch] - (1.0f - a) * clear[ch]);
     L.sum_color[ch] += c[ch];
+  }
   L.sum_alpha += a;
   if (alb) {
     for (int ch = 0; ch < 3; ++ch)
@@ -141,6 +153,7 @@ std::vector<Layer> gather_layers(const WatercolorImages& in, bool use_albedo, Sh
   std::unordered_map<int32_t, int> index_of;
   first_label.create(size, CV_32S);
   s.luminance.create(size, CV_32F);
+  const cv::Vec3f clear = clear_bgr(in.clear);
   for (int y = 0; y < size.height; ++y) {
     const int32_t* id = in.id.ptr<int32_t>(y);
     const cv::Vec4b* col = in.color.ptr<cv::Vec4b>(y);
@@ -168,8 +181,8 @@ std::vector<Layer> gather_layers(const WatercolorImages& in, bool use_albedo, Sh
         last = it->second;
       }
       lab[x] = last;
-      lum[x] =
-          add_pixel(layers[size_t(last)], x, y, col[x], alb ? &alb[x] : nullptr, dep[x], *s.srgb);
+      lum[x] = add_pixel(layers[size_t(last)], x, y, col[x], alb ? &alb[x] : nullptr, dep[x], clear,
+                         *s.srgb);
     }
   }
   return layers;
@@ -505,6 +518,7 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                    in.wood_cluster = res.wood_cluster;
                    in.units_per_px = res.units_per_px;
                    in.light = res.light;
+                   in.clear = res.clear;
                    if (marks) in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });

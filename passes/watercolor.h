@@ -159,6 +159,11 @@ struct WatercolorImages {
   // the key light whose shadow through the crown darkens them.
   std::shared_ptr<const LeafPieces> pieces;
   KeyLight light;
+  // The colour target's clear (linear RGBA, RasterRequest::background). Transparent black: the
+  // colour is premultiplied. With alpha 0 and a colour (a stack's layers share the line
+  // layer's clear), supersampled edge pixels carry (1 - alpha) of that colour, which is taken
+  // out before the washes take their pigment.
+  glm::vec4 clear{0.0f};
 };
 
 // Bousseau et al. 2006, pigment density variation: modulation of a colour channel c in [0, 1]
@@ -197,6 +202,7 @@ struct WatercolorResources {
   double units_per_px = 0.0;  // WatercolorImages::units_per_px
   LeafPiecesHandle pieces{};  // "leaf-pieces", or none (no marks)
   KeyLight light;             // WatercolorImages::light
+  glm::vec4 clear{0.0f};      // WatercolorImages::clear
 };
 
 // Adds the pass "watercolor" and returns its output resource "watercolor". albedo is read only

@@ -228,6 +228,7 @@ SheetPlan add_sheet_passes(RenderGraph& graph, const std::vector<const Style*>& 
     context.lighting = setup.lighting;
     context.view = setup.camera.view;
     context.background = scene.raster.request.background;  // the view's, not the raster's
+    context.clear = setup.request.background;
     context.foliage_diagonal = scene.foliage_diagonal;
     context.rasterizer = setup.rasterizer;
     context.camera = setup.camera;

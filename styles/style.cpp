@@ -203,6 +203,7 @@ StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,
   r.units_per_px = units_per_px(context.camera, context.scene_sphere);
   r.pieces = context.leaf_pieces;
   r.light = key_light_of(context);
+  r.clear = context.clear;
   return {add_watercolor_pass(graph, r, glm::inverse(context.view), p)};
 }
 

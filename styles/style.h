@@ -25,7 +25,11 @@ struct StyleContext {
   Lighting lighting;
   glm::mat4 view{1.0f};              // world -> view
   glm::vec4 background{1, 1, 1, 0};  // linear RGBA (RasterRequest::background)
-  float foliage_diagonal = 0;        // scene units; 0 = unknown (scale of object-space noise)
+  // The raster pass's colour clear for this style (RasterRequest::background as
+  // Style::configure set it; a stack shares its line layer's): what the colour's edge pixels
+  // are mixed with. Transparent black = premultiplied colour.
+  glm::vec4 clear{0.0f};
+  float foliage_diagonal = 0;  // scene units; 0 = unknown (scale of object-space noise)
   // For styles that render extra views (toon's shadow map from the key light): the uploaded
   // scene and a sphere around it. May be null/empty when no such style is built.
   Rasterizer* rasterizer = nullptr;
