@@ -256,12 +256,12 @@ void glaze_row(GlazeInto& g, int x0, int y, int w, const cv::Vec3f* wash, const 
     b[x - r.x] *= under(cover[x - x0]);
 }
 
-// The wash's optical density over the roi (out.density) and its coverage (out.coverage): the
+// The wash over `roi`, glazed into `into` row by row: its optical density and coverage from the
 // wobbled mask thresholded, darkened at its rim, tinted with the layer's pigment and its
 // leaves' detail.
 void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& b,
-                  const cv::Mat& mask, const SmallFields& small, GlazeInto* into, LayerOut& out) {
-  const cv::Rect roi = out.roi;
+                  const cv::Mat& mask, const SmallFields& small, const cv::Rect& roi,
+                  GlazeInto& into) {
   const int w = roi.width, h = roi.height;
   const bool detail = s.detail > 0.0f;
   // Gradient magnitude of a blurred unit step peaks at 1 / (sigma sqrt(2 pi)): normalise by it
@@ -269,13 +269,9 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
   const float grad_norm = 0.5f * std::max(s.sigma, 0.5f) * kSqrt2Pi;  // 0.5: central difference
   const float lo = 0.5f - s.half_width, hi = 0.5f + s.half_width;
   const cv::Mat& seen = s.seen.empty() ? s.label : s.seen;
-  if (!into) {
-    out.density.create(h, w, CV_32FC3);
-    out.coverage.create(h, w, CV_32F);
-  }
   for_bands(h, [&](int y0, int y1) {
-    std::vector<cv::Vec3f> wash_row(into ? size_t(w) : 0);
-    std::vector<float> cover_row(into ? size_t(w) : 0);
+    std::vector<cv::Vec3f> wash_row(static_cast<size_t>(w));
+    std::vector<float> cover_row(static_cast<size_t>(w));
     for (int y = y0; y < y1; ++y) {
       const float* m = mask.ptr<float>(y);
       const float* mu = mask.ptr<float>(std::max(y - 1, 0));
@@ -286,8 +282,8 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
       const uint8_t* rim_ok = s.rim_ok.empty() ? nullptr : s.rim_ok.ptr<uint8_t>(roi.y + y) + roi.x;
       const bool soft = !s.soft_luminance.empty();
       const float sy = b.at(y);
-      cv::Vec3f* t = into ? wash_row.data() : out.density.ptr<cv::Vec3f>(y);
-      float* cov = into ? cover_row.data() : out.coverage.ptr<float>(y);
+      cv::Vec3f* t = wash_row.data();
+      float* cov = cover_row.data();
       for (int x = 0; x < w; ++x) {
         const float alpha = smoothstep(lo, hi, m[x]);
         cov[x] = alpha;
@@ -305,26 +301,24 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
         for (int ch = 0; ch < 3; ++ch)
           t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
       }
-      if (into) glaze_row(*into, roi.x, roi.y + y, w, t, cov);
+      glaze_row(into, roi.x, roi.y + y, w, t, cov);
     }
   });
 }
 
 }  // namespace
 
-LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into) {
-  LayerOut out;
-  out.roi = layer_roi(s, layer);
+void paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto& into) {
+  const cv::Rect roi = layer_roi(s, layer);
   // The masks are blurred at 1/f of the resolution (they are smooth after the blur).
   const BlockScale scale(std::clamp(int(s.sigma / 2.0f), 1, 4));
   const bool detail = s.detail > 0.0f;
-  BlockMasks blocks = block_masks(s, out.roi, k, scale.f, detail);
+  BlockMasks blocks = block_masks(s, roi, k, scale.f, detail);
   if (s.close > 0.0f && layer.id != s.wood) close_over_paper(blocks, s.close / float(scale.f));
   const BlockMasks blurred = blur_masks(blocks, s.sigma / float(scale.f), detail);
   const SmallFields small = continue_under_occluders(blurred, detail);
-  const cv::Mat mask = wobbled_mask(s, layer, out.roi, scale, small.mask);
-  wash_density(s, layer, k, scale, mask, small, into, out);
-  return out;
+  const cv::Mat mask = wobbled_mask(s, layer, roi, scale, small.mask);
+  wash_density(s, layer, k, scale, mask, small, roi, into);
 }
 
 // Every layer painted, then glazed: the densities of transparent washes add (their
@@ -348,11 +342,11 @@ cv::Mat glaze(const Shared& s, const std::vector<Layer>& sorted, int32_t wood,
       bark_roi = layer_roi(s, sorted[k]);
       bark = cv::Mat(bark_roi.size(), CV_32FC3, cv::Scalar(0, 0, 0));
       GlazeInto into{bark, {}, {}, false, bark_roi.tl()};
-      paint_layer(s, sorted[k], int(k), &into);
+      paint_layer(s, sorted[k], int(k), into);
       continue;
     }
     GlazeInto into{density, bark, bark_roi, !is_wood};
-    paint_layer(s, sorted[k], int(k), &into);
+    paint_layer(s, sorted[k], int(k), into);
   }
   if (!apart) return density;
   const cv::Mat wood_seen = wood_seen_of();

@@ -41,12 +41,6 @@ struct Layer {
   float mean_luminance = 0;       // display (sRGB-encoded) luminance
 };
 
-struct LayerOut {
-  cv::Rect roi;
-  cv::Mat density;   // CV_32FC3 optical density (-log2 transmittance), 0 = no pigment
-  cv::Mat coverage;  // CV_32FC1 in [0, 1]: how much of what lies behind it this wash covers
-};
-
 struct Shared {
   cv::Size size;
   // CV_32SC1: index of the layer (back to front), -1 background: the washes' shapes. From the
@@ -87,8 +81,9 @@ struct Shared {
   const SrgbTables* srgb = nullptr;
 };
 
-// Where a wash goes when it is glazed as it is painted, row by row, with no buffer of the wash
-// itself: over `density` (the full-size glaze so far; with `weaken`, what lies behind is first
+// Where a wash goes: it is glazed as it is painted, row by row, with no buffer of the wash
+// itself (its optical density, -log2 transmittance, and its coverage in [0, 1]), over `density`
+// (the glaze so far, CV_32FC3; with `weaken`, what lies behind is first
 // weakened where the wash covers it, as under a nearer wash), and `bark` (the wood's wash over
 // bark_roi, or empty) weakened alike.
 struct GlazeInto {
@@ -100,8 +95,8 @@ struct GlazeInto {
 };
 
 // Layer `k` (its index back to front in Shared::label) painted over its bounding box, padded by
-// the blur and the wobble. With `into` it is glazed there at once and only out.roi is set.
-LayerOut paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto* into = nullptr);
+// the blur and the wobble, and glazed into `into`.
+void paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto& into);
 
 // Every layer of `sorted` painted and glazed (their optical densities added, back to front):
 // CV_32FC3 over the image. The wood's wash (layer id `wood`, 0 = none) lies under the leaves',
