@@ -1,7 +1,10 @@
 #include "passes/crack_chains.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/error.h"
 
@@ -106,6 +109,37 @@ class CornerGraph {
   cv::Mat m_free_x, m_free_y, m_marked_x, m_marked_y;
 };
 
+// The corners at the ends of the cracks, row by row (y, then x), each once. A crack of
+// `cracks.y` at (row r, column c) joins corners (c, r + 1) and (c + 1, r + 1); one of `cracks.x`
+// at (r, c) joins (c + 1, r) and (c + 1, r + 1).
+std::vector<cv::Point> cracked_corners(const Cracks& cracks) {
+  const int64_t stride = int64_t(cracks.image().width) + 1;
+  std::vector<int64_t> keys;
+  std::vector<cv::Point> at;
+  auto add = [&](int cx, int cy) { keys.push_back(int64_t(cy) * stride + cx); };
+  if (!cracks.y.empty()) {
+    cv::findNonZero(cracks.y, at);
+    for (const cv::Point& q : at) {
+      add(q.x, q.y + 1);
+      add(q.x + 1, q.y + 1);
+    }
+  }
+  if (!cracks.x.empty()) {
+    cv::findNonZero(cracks.x, at);
+    for (const cv::Point& q : at) {
+      add(q.x + 1, q.y);
+      add(q.x + 1, q.y + 1);
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<cv::Point> corners;
+  corners.reserve(keys.size());
+  for (int64_t k : keys)
+    corners.emplace_back(int(k % stride), int(k / stride));
+  return corners;
+}
+
 }  // namespace
 
 std::vector<Polyline> chain_cracks(const Cracks& cracks) {
@@ -115,15 +149,16 @@ std::vector<Polyline> chain_cracks(const Cracks& cracks) {
     for (int d = 0; d < 4; ++d)
       if (g.free(cx, cy, d)) out.push_back(g.walk(cx, cy, d));
   };
+  // Only corners that touch a crack can start a chain: they are visited in the order a scan of
+  // every corner would visit them.
+  const std::vector<cv::Point> corners = cracked_corners(cracks);
   for (int pass = 0; pass < 2; ++pass)  // ends first, then junctions
-    for (int cy = 0; cy <= g.height(); ++cy)
-      for (int cx = 0; cx <= g.width(); ++cx) {
-        const int deg = g.degree(cx, cy);
-        if (pass == 0 ? deg == 1 : deg >= 3) walk_all_from(cx, cy);
-      }
-  for (int cy = 0; cy <= g.height(); ++cy)  // what is left are loops
-    for (int cx = 0; cx <= g.width(); ++cx)
-      walk_all_from(cx, cy);
+    for (const cv::Point& c : corners) {
+      const int deg = g.degree(c.x, c.y);
+      if (pass == 0 ? deg == 1 : deg >= 3) walk_all_from(c.x, c.y);
+    }
+  for (const cv::Point& c : corners)  // what is left are loops
+    walk_all_from(c.x, c.y);
   return out;
 }
 

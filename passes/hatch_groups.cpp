@@ -113,10 +113,18 @@ cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const 
   cv::divide(r, cv::max(w, 1e-6f), r);
   cv::Mat t(rank.size(), CV_32FC1);
   const float lo = p.lightest, hi = std::max(p.darkest, p.lightest + 1e-3f);
-  for (int y = 0; y < r.rows; ++y)
-    for (int x = 0; x < r.cols; ++x)
-      t.at<float>(y, x) =
-          std::pow(std::clamp((r.at<float>(y, x) - lo) / (hi - lo), 0.0f, 1.0f), p.gamma);
+  // The ends of the curve once: most of the picture is paper (0) or beyond `darkest`.
+  const float at0 = std::pow(0.0f, p.gamma), at1 = std::pow(1.0f, p.gamma);
+  for_bands(r.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const float* in = r.ptr<float>(y);
+      float* out = t.ptr<float>(y);
+      for (int x = 0; x < r.cols; ++x) {
+        const float v = std::clamp((in[x] - lo) / (hi - lo), 0.0f, 1.0f);
+        out[x] = v <= 0.0f ? at0 : (v >= 1.0f ? at1 : std::pow(v, p.gamma));
+      }
+    }
+  });
   return t;
 }
 
@@ -129,24 +137,30 @@ std::vector<Group> clump_groups(const LeafLayer& layer, const cv::Mat& normal, c
   std::map<uint32_t, int> label_of;
   std::vector<Group> groups;
   std::vector<cv::Vec3d> normals;
+  // Each primitive's label, found in the map once (0 = not yet).
+  std::vector<int> label_of_front(layer.clusters.size(), 0);
   for (int y = 0; y < front.rows; ++y)
     for (int x = 0; x < front.cols; ++x) {
       const int f = front.at<int>(y, x);
       if (f <= 0) continue;
-      const uint32_t c = layer.clusters[size_t(f - 1)];
-      auto [it, fresh] = label_of.try_emplace(c, int(groups.size()) + 1);
-      if (fresh) {
-        groups.push_back({it->second, {}, {}, cv::Rect(x, y, 1, 1)});
-        normals.emplace_back(0, 0, 0);
+      int& label = label_of_front[size_t(f - 1)];
+      if (label == 0) {
+        auto [it, fresh] =
+            label_of.try_emplace(layer.clusters[size_t(f - 1)], int(groups.size()) + 1);
+        if (fresh) {
+          groups.push_back({it->second, {}, {}, cv::Rect(x, y, 1, 1)});
+          normals.emplace_back(0, 0, 0);
+        }
+        label = it->second;
       }
-      Group& g = groups[size_t(it->second - 1)];
+      Group& g = groups[size_t(label - 1)];
       g.box |= cv::Rect(x, y, 1, 1);
-      regions.at<int>(y, x) = it->second;
+      regions.at<int>(y, x) = label;
       const int ox = std::min(normal.cols - 1, int((x + 0.5) * layer.factor)),
                 oy = std::min(normal.rows - 1, int((y + 0.5) * layer.factor));
       const cv::Vec3f n = normal.at<cv::Vec3f>(oy, ox);
       const double len = cv::norm(n);
-      if (len > 0.0) normals[size_t(it->second - 1)] += cv::Vec3d(n) / len;
+      if (len > 0.0) normals[size_t(label - 1)] += cv::Vec3d(n) / len;
     }
   std::vector<double> weight(groups.size(), 0.0);
   std::vector<cv::Point2d> sum(groups.size());

@@ -1,7 +1,10 @@
 #include "passes/leaf_outlines.h"
 
+#include <algorithm>
+#include <iterator>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "passes/crack_chains.h"
 #include "passes/pass_common.h"
@@ -9,6 +12,9 @@
 namespace sylva {
 
 namespace {
+
+// The runs outline_primitives splits the primitives into.
+constexpr size_t kOutlineRuns = 64;
 
 struct ArcPoint {
   glm::vec2 p;   // output px
@@ -125,8 +131,21 @@ void add_arcs(const std::vector<ArcPoint>& pts, const ArcStyle& s, std::vector<S
 
 void outline_primitives(const std::vector<Primitive>& prims, const LeafLayer& layer,
                         const ArcStyle& s, std::vector<Stroke> (&arcs)[2]) {
-  for (size_t i = 0; i < prims.size(); ++i)
-    add_arcs(arc_points(prims, i, layer, s), s, arcs);
+  // The primitives in a fixed number of runs, outlined in parallel and joined in order: the
+  // same strokes in the same order whatever the threads.
+  struct Arcs {
+    std::vector<Stroke> cls[2];
+  };
+  const size_t n = prims.size(), runs = std::min<size_t>(n, kOutlineRuns);
+  std::vector<Arcs> part(runs);
+  cv::parallel_for_(cv::Range(0, int(runs)), [&](const cv::Range& r) {
+    for (int k = r.start; k < r.end; ++k)
+      for (size_t i = n * size_t(k) / runs; i < n * size_t(k + 1) / runs; ++i)
+        add_arcs(arc_points(prims, i, layer, s), s, part[size_t(k)].cls);
+  });
+  for (Arcs& a : part)
+    for (int c = 0; c < 2; ++c)
+      std::move(a.cls[c].begin(), a.cls[c].end(), std::back_inserter(arcs[c]));
 }
 
 std::vector<Stroke> black_fills(const std::vector<Primitive>& prims, const LeafLayer& layer,

@@ -191,12 +191,16 @@ std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& 
   const glm::mat4 view_proj = in.camera.proj * in.camera.view;
   const float h = std::max(1e-6f, 0.05f * in.pieces->cell);
   const std::vector<LeafPiece> merged = clumps(*in.pieces, cell);
+  std::vector<Primitive> all(merged.size());
+  std::vector<uint8_t> made(merged.size(), 0);
+  cv::parallel_for_(cv::Range(0, int(merged.size())), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i)
+      made[size_t(i)] = make_primitive(merged[size_t(i)], in.camera.view, view_proj,
+                                       in.color.size(), f, h, p.shape, least, all[size_t(i)]);
+  });
   prims.reserve(merged.size());
-  for (const LeafPiece& piece : merged) {
-    Primitive q;
-    if (make_primitive(piece, in.camera.view, view_proj, in.color.size(), f, h, p.shape, least, q))
-      prims.push_back(q);
-  }
+  for (size_t i = 0; i < all.size(); ++i)
+    if (made[i]) prims.push_back(all[i]);
   return prims;
 }
 
@@ -207,7 +211,7 @@ std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& 
 void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
                      std::vector<Primitive>& prims, LeafLayer& layer) {
   const cv::Size work = layer.front.size();
-  const ToneRank tone = tone_rank(in.color, work, sigma);
+  const ToneRank tone = tone_rank(in.color, work, sigma, false);
   SampleShadow shadow;
   if (in.light.on && in.samples && p.shadow > 0.0f && !in.light.sphere.empty())
     shadow = sample_shadow_map(*in.samples, in.light.sphere, in.light.toward, in.light.point,

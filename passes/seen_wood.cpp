@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "passes/pass_common.h"
@@ -17,35 +18,51 @@ cv::Mat round_kernel(double diameter) {
   return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
 }
 
+// A wood sample's disc in the frame: centre and radius (px), view depth.
+struct Disc {
+  float cx, cy, r, d;
+};
+
 // The wood samples splatted at the frame's resolution: each a disc of about its spacing, the
-// nearest kept; +inf where none.
+// nearest kept; +inf where none. Projected in parallel, then splatted by bands of rows (the
+// nearest is the same in any order).
 cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size, uint32_t wood) {
   const float inf = std::numeric_limits<float>::infinity();
   cv::Mat z(size, CV_32FC1, cv::Scalar(inf));
   const glm::mat4 view_proj = camera.proj * camera.view;
   // px per scene unit at view depth d: proj[1][1] * h / 2 / d (perspective), without / d (ortho).
   const float focal = camera.proj[1][1] * 0.5f * float(size.height);
-  for (size_t i = 0; i < s.size(); ++i) {
-    if (s.clusters[i] != wood) continue;
-    const glm::vec4 clip = view_proj * glm::vec4(s.positions[i], 1.0f);
-    if (!(clip.w > 0.0f)) continue;
-    const float d = -(camera.view * glm::vec4(s.positions[i], 1.0f)).z;
-    const float cx = (clip.x / clip.w * 0.5f + 0.5f) * float(size.width);
-    const float cy = (0.5f - clip.y / clip.w * 0.5f) * float(size.height);
-    const float r = std::clamp(0.6f * s.spacing * (camera.ortho ? focal : focal / d), 0.5f, 8.0f);
-    if (!std::isfinite(cx) || !std::isfinite(cy) || !(d > 0.0f)) continue;
-    const int x0 = std::max(0, int(std::ceil(cx - r - 0.5f))),
-              x1 = std::min(size.width - 1, int(std::floor(cx + r - 0.5f)));
-    const int y0 = std::max(0, int(std::ceil(cy - r - 0.5f))),
-              y1 = std::min(size.height - 1, int(std::floor(cy + r - 0.5f)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const float dx = float(x) + 0.5f - cx, dy = float(y) + 0.5f - cy;
-        if (dx * dx + dy * dy > r * r) continue;
-        float& t = z.at<float>(y, x);
-        t = std::min(t, d);
-      }
-  }
+  std::vector<Disc> discs(s.size(), Disc{0.0f, 0.0f, 0.0f, 0.0f});
+  cv::parallel_for_(cv::Range(0, int(s.size())), [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      const size_t i = size_t(k);
+      if (s.clusters[i] != wood) continue;
+      const glm::vec4 clip = view_proj * glm::vec4(s.positions[i], 1.0f);
+      if (!(clip.w > 0.0f)) continue;
+      const float d = -(camera.view * glm::vec4(s.positions[i], 1.0f)).z;
+      const float cx = (clip.x / clip.w * 0.5f + 0.5f) * float(size.width);
+      const float cy = (0.5f - clip.y / clip.w * 0.5f) * float(size.height);
+      const float r = std::clamp(0.6f * s.spacing * (camera.ortho ? focal : focal / d), 0.5f, 8.0f);
+      if (!std::isfinite(cx) || !std::isfinite(cy) || !(d > 0.0f)) continue;
+      discs[i] = {cx, cy, r, d};
+    }
+  });
+  for_bands(size.height, [&](int band0, int band1) {
+    for (const Disc& c : discs) {
+      if (!(c.d > 0.0f)) continue;
+      const int x0 = std::max(0, int(std::ceil(c.cx - c.r - 0.5f))),
+                x1 = std::min(size.width - 1, int(std::floor(c.cx + c.r - 0.5f)));
+      const int y0 = std::max(band0, int(std::ceil(c.cy - c.r - 0.5f))),
+                y1 = std::min(band1 - 1, int(std::floor(c.cy + c.r - 0.5f)));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const float dx = float(x) + 0.5f - c.cx, dy = float(y) + 0.5f - c.cy;
+          if (dx * dx + dy * dy > c.r * c.r) continue;
+          float& t = z.at<float>(y, x);
+          t = std::min(t, c.d);
+        }
+    }
+  });
   return z;
 }
 

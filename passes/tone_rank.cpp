@@ -25,7 +25,7 @@ cv::Mat tone_darkness(const cv::Mat& color) {
   return dark;
 }
 
-ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma) {
+ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranked) {
   cv::Mat dark = tone_darkness(color), cover, alpha;
   cv::extractChannel(color, alpha, 3);
   cv::Mat(alpha >= 128).convertTo(cover, CV_32F, 1.0 / 255.0);
@@ -35,22 +35,17 @@ ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma) {
   }
   ToneRank t;
   t.plant = cover >= 0.5f;
+  if (cv::countNonZero(t.plant) == 0) return {};
   // The plant's darkness only: divide out the paper's share of each pixel and of the blur.
   cv::Mat weight;
   cv::GaussianBlur(dark, t.dark, {0, 0}, std::max(0.5, sigma));
   cv::GaussianBlur(cover, weight, {0, 0}, std::max(0.5, sigma));
   cv::divide(t.dark, cv::max(weight, 1e-6f), t.dark);
+  if (!ranked) return t;
   for (int y = 0; y < size.height; ++y)
     for (int x = 0; x < size.width; ++x)
       if (t.plant.at<uint8_t>(y, x)) t.sorted.push_back(t.dark.at<float>(y, x));
-  if (t.sorted.empty()) return {};
   std::sort(t.sorted.begin(), t.sorted.end());
-  t.rank = cv::Mat(size, CV_32FC1, cv::Scalar(0));
-  for_bands(size.height, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < size.width; ++x)
-        if (t.plant.at<uint8_t>(y, x)) t.rank.at<float>(y, x) = t.rank_of(t.dark.at<float>(y, x));
-  });
   return t;
 }
 

@@ -21,9 +21,9 @@ cv::Mat tone_darkness(const cv::Mat& color);
 struct ToneRank {
   cv::Mat plant;  // CV_8UC1 at the working size, 255 = on the plant (area coverage >= 1/2)
   cv::Mat dark;   // CV_32FC1 the smoothed darkness, [0, 1]
-  cv::Mat rank;   // CV_32FC1 in [0, 1]: the share of the plant lighter than here; 0 off it
-  std::vector<float> sorted;  // the plant's smoothed darkness, ascending
-  bool empty() const { return rank.empty(); }
+  // The plant's smoothed darkness, ascending (empty unless ranked): what a rank is taken among.
+  std::vector<float> sorted;
+  bool empty() const { return dark.empty(); }
   // The rank of the smoothed darkness at `at` (px at the working size, clamped to it), on the
   // plant or beside it.
   float rank_near(cv::Point2f at) const;
@@ -33,8 +33,9 @@ struct ToneRank {
 };
 
 // At `size` (a working resolution of the colour's frame): the darkness area-averaged to `size`,
-// smoothed over the plant by a Gaussian of `sigma` px (at `size`), and its rank. Empty when no
-// pixel is on the plant.
-ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma);
+// smoothed over the plant by a Gaussian of `sigma` px (at `size`), and, when `ranked`, the
+// plant's darkness sorted for its ranks (without it rank_near and rank_of answer 0: for callers
+// that read dark_near only). Empty when no pixel is on the plant.
+ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranked = true);
 
 }  // namespace sylva
