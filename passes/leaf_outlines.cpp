@@ -4,6 +4,7 @@
 #include <iterator>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 #include <vector>
 
 #include "passes/crack_chains.h"
@@ -34,19 +35,37 @@ int front_at(const cv::Mat& front, cv::Point2f q) {
   return front.at<int>(y, x);
 }
 
+// The most points around an outline (arc_points).
+constexpr int kMostArcPoints = 256;
+
+// cos and sin of 2 pi j / n for j < n, for every n up to kMostArcPoints: computed once, read by
+// every primitive's outline.
+const std::vector<std::pair<double, double>>& unit_circle(int n) {
+  static const std::vector<std::vector<std::pair<double, double>>> circles = [] {
+    std::vector<std::vector<std::pair<double, double>>> all(size_t(kMostArcPoints + 1));
+    for (int m = 1; m <= kMostArcPoints; ++m)
+      for (int j = 0; j < m; ++j) {
+        const double phi = 2.0 * std::numbers::pi * j / m;
+        all[size_t(m)].emplace_back(std::cos(phi), std::sin(phi));
+      }
+    return all;
+  }();
+  return circles[size_t(n)];
+}
+
 // Points around primitive i's outline, about one per working px, each weighted by how far the
 // primitive stands in front of what lies just outside it there (0 where it is hidden).
 std::vector<ArcPoint> arc_points(const std::vector<Primitive>& prims, size_t i,
                                  const LeafLayer& layer, const ArcStyle& s) {
   const Primitive& p = prims[i];
   const double perimeter = std::numbers::pi * std::sqrt(2.0 * (p.a * p.a + p.b * p.b));
-  const int n = std::clamp(int(std::ceil(perimeter)), 12, 256);
+  const int n = std::clamp(int(std::ceil(perimeter)), 12, kMostArcPoints);
   const float step = step_of(p, s);
   const double qa = p.qa(), qb = p.qb(), qc = p.qc();
   std::vector<ArcPoint> pts(static_cast<size_t>(n));
+  const std::vector<std::pair<double, double>>& circle = unit_circle(n);
   for (int j = 0; j < n; ++j) {
-    const double phi = 2.0 * std::numbers::pi * j / n;
-    const double lx = p.a * std::cos(phi), ly = p.b * std::sin(phi);
+    const double lx = p.a * circle[size_t(j)].first, ly = p.b * circle[size_t(j)].second;
     const cv::Point2f d(float(p.cos_t * lx - p.sin_t * ly), float(p.sin_t * lx + p.cos_t * ly));
     cv::Point2f g(float(qa * d.x + qb * d.y), float(qb * d.x + qc * d.y));  // outward
     g *= 1.0f / std::max(1e-12f, std::hypot(g.x, g.y));
