@@ -113,30 +113,23 @@ class CornerGraph {
 // `cracks.y` at (row r, column c) joins corners (c, r + 1) and (c + 1, r + 1); one of `cracks.x`
 // at (r, c) joins (c + 1, r) and (c + 1, r + 1).
 std::vector<cv::Point> cracked_corners(const Cracks& cracks) {
-  const int64_t stride = int64_t(cracks.image().width) + 1;
-  std::vector<int64_t> keys;
-  std::vector<cv::Point> at;
-  auto add = [&](int cx, int cy) { keys.push_back(int64_t(cy) * stride + cx); };
-  if (!cracks.y.empty()) {
-    cv::findNonZero(cracks.y, at);
-    for (const cv::Point& q : at) {
-      add(q.x, q.y + 1);
-      add(q.x + 1, q.y + 1);
-    }
+  const cv::Size image = cracks.image();
+  cv::Mat touched(image.height + 1, image.width + 1, CV_8UC1, cv::Scalar(0));
+  for (int r = 0; r < cracks.y.rows; ++r) {
+    const uint8_t* c = cracks.y.ptr<uint8_t>(r);
+    uint8_t* t = touched.ptr<uint8_t>(r + 1);
+    for (int x = 0; x < cracks.y.cols; ++x)
+      if (c[x]) t[x] = t[x + 1] = 1;
   }
-  if (!cracks.x.empty()) {
-    cv::findNonZero(cracks.x, at);
-    for (const cv::Point& q : at) {
-      add(q.x + 1, q.y);
-      add(q.x + 1, q.y + 1);
-    }
+  for (int r = 0; r < cracks.x.rows; ++r) {
+    const uint8_t* c = cracks.x.ptr<uint8_t>(r);
+    uint8_t* t0 = touched.ptr<uint8_t>(r);
+    uint8_t* t1 = touched.ptr<uint8_t>(r + 1);
+    for (int x = 0; x < cracks.x.cols; ++x)
+      if (c[x]) t0[x + 1] = t1[x + 1] = 1;
   }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<cv::Point> corners;
-  corners.reserve(keys.size());
-  for (int64_t k : keys)
-    corners.emplace_back(int(k % stride), int(k / stride));
+  cv::findNonZero(touched, corners);
   return corners;
 }
 
