@@ -127,8 +127,12 @@ BlockMasks block_masks(const Shared& s, const cv::Rect& roi, int k, int f, bool 
 void close_over_paper(BlockMasks& b, float radius) {
   const int r = std::max(1, int(std::lround(radius)));
   cv::Mat closed;
+  // Nothing of the mask lies beyond the grid (the layer's box, padded): a constant 0 border, or
+  // the erosion would keep the dilation along the grid's edge and the wash end there in a
+  // straight cut.
   cv::morphologyEx(b.own, closed, cv::MORPH_CLOSE,
-                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}),
+                   cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
   cv::Mat gain = cv::max(closed - b.own, 0.0f);
   b.own += cv::min(gain, b.paper);
 }

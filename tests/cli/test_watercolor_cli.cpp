@@ -96,5 +96,40 @@ TEST(WatercolorCli, SupersamplingKeepsThePigment) {
   }
 }
 
+// The longest straight run (px) of a paint-paper boundary along a row or a column: a wash's
+// edge wobbles along the paper, so a long straight one is a wash cut off by the box it was
+// painted in.
+int longest_straight_edge(const cv::Mat& picture) {
+  cv::Mat diff;
+  const cv::Mat paper(picture.size(), CV_8UC3, picture.at<cv::Vec3b>(2, 2));
+  cv::absdiff(picture, paper, diff);
+  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
+  const cv::Mat painted = diff > 12;
+  int longest = 0;
+  for (const cv::Mat& m : {painted, cv::Mat(painted.t())})
+    for (int y = 1; y < m.rows; ++y) {
+      int run = 0;
+      for (int x = 0; x < m.cols; ++x) {
+        const bool edge = (m.at<uint8_t>(y, x) != 0) != (m.at<uint8_t>(y - 1, x) != 0);
+        run = edge ? run + 1 : 0;
+        longest = std::max(longest, run);
+      }
+    }
+  return longest;
+}
+
+TEST(WatercolorCli, AMassIsNotCutOffByItsBox) {
+  // A mass's gaps are closed over a radius (a twentieth of watercolor.mass) that can exceed the
+  // padding of the box its wash is painted in. The closing kept its dilation along the box's
+  // edge, so the wash ended there in a straight line (old binary: a 53 px straight edge on the
+  // fern at 1024 px with watercolor.blur = 2, and cuts in the default ash at 2048 px).
+  const std::string out = temp_dir("watercolor-cut") + "/fern.png";
+  const RunResult r =
+      run_sylva("render " + shared_dir() + "/assets/polyhaven_fern_02.glb" +
+                " --style watercolor --size 1024 --set watercolor.blur=2 -o " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_LT(longest_straight_edge(cv::imread(out, cv::IMREAD_COLOR)), 28);
+}
+
 }  // namespace
 }  // namespace sylva::test
