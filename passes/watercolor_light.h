@@ -21,8 +21,9 @@ cv::Mat rim_allowed(const Shared& s, const std::vector<Layer>& sorted, float rim
 // image's resolution (the grid rounds up; Shared::soft_at reads it).
 cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
 
-// Where the id buffer (CV_32SC1) shows the wood cluster at least 3 px wide at 1024 px (`scale`
-// = the image's size over 1024, reference_scale), softened by 0.7 px: CV_8UC1, 255 = wood.
+// Where the id buffer (CV_32SC1) shows the wood cluster at least 5 px wide at 1024 px (`scale`
+// = the image's size over 1024, reference_scale: the same width at every size), in pieces of at
+// least 60 px at 1024 px, softened by 0.7 px: CV_8UC1, 255 = wood.
 cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale);
 
 }  // namespace sylva::watercolor_internal
