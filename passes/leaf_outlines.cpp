@@ -156,11 +156,19 @@ void outline_primitives(const std::vector<Primitive>& prims, const LeafLayer& la
     std::vector<Stroke> cls[2];
   };
   const size_t n = prims.size(), runs = std::min<size_t>(n, kOutlineRuns);
+  // A primitive no pixel of the front buffer shows has no point of its outline drawn (a point is
+  // drawn only just inside a pixel it owns): it is skipped.
+  std::vector<uint8_t> shown(n, 0);
+  for (int y = 0; y < layer.front.rows; ++y) {
+    const int* f = layer.front.ptr<int>(y);
+    for (int x = 0; x < layer.front.cols; ++x)
+      if (f[x] > 0 && size_t(f[x]) <= n) shown[size_t(f[x] - 1)] = 1;
+  }
   std::vector<Arcs> part(runs);
   cv::parallel_for_(cv::Range(0, int(runs)), [&](const cv::Range& r) {
     for (int k = r.start; k < r.end; ++k)
       for (size_t i = n * size_t(k) / runs; i < n * size_t(k + 1) / runs; ++i)
-        add_arcs(arc_points(prims, i, layer, s), s, part[size_t(k)].cls);
+        if (shown[i]) add_arcs(arc_points(prims, i, layer, s), s, part[size_t(k)].cls);
   });
   for (Arcs& a : part)
     for (int c = 0; c < 2; ++c)
