@@ -171,8 +171,8 @@ cv::Mat crown_coverage(const SurfaceSamples& samples, const Camera& camera, cv::
 }
 
 std::vector<PartMask> project_part_masks(const SurfaceSamples& samples, const Camera& camera,
-                                         double sigma, float level, uint32_t wood,
-                                         float wood_level) {
+                                         double sigma, float level, uint32_t wood, float wood_level,
+                                         double wood_sigma) {
   SYLVA_CHECK(camera.width > 0 && camera.height > 0, "project_part_masks: an empty frame");
   SYLVA_CHECK(
       sigma > 0.0 && level > 0.0f && level < 1.0f && wood_level >= 0.0f && wood_level < 1.0f,
@@ -183,16 +183,19 @@ std::vector<PartMask> project_part_masks(const SurfaceSamples& samples, const Ca
   std::vector<PartMask> out;
   for (const Part& part : parts_back_to_front(samples, projector, wood, wood_behind))
     out.push_back(
-        part_mask(part, projector, sigma, part.cluster == wood ? wood_level : level, size));
+        part.cluster == wood
+            ? part_mask(part, projector, wood_sigma > 0.0 ? wood_sigma : sigma, wood_level, size)
+            : part_mask(part, projector, sigma, level, size));
   return out;
 }
 
 CrownParts project_crown_parts(const SurfaceSamples& samples, const Camera& camera, double sigma,
-                               float level, uint32_t wood, float wood_level) {
+                               float level, uint32_t wood, float wood_level, double wood_sigma) {
   CrownParts parts;
   parts.label = cv::Mat(camera.height, camera.width, CV_32SC1, cv::Scalar(0));
   parts.depth = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
-  for (const PartMask& m : project_part_masks(samples, camera, sigma, level, wood, wood_level)) {
+  for (const PartMask& m :
+       project_part_masks(samples, camera, sigma, level, wood, wood_level, wood_sigma)) {
     parts.order.push_back({m.cluster, m.depth, m.centre});
     if (m.box.empty()) continue;
     parts.label(m.box).setTo(int(m.cluster), m.mask);

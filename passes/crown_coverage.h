@@ -45,9 +45,11 @@ struct PartMask {
   cv::Rect box;        // the mask's place in the image (may be empty)
   cv::Mat mask;        // CV_8UC1 of box's size, 255 = the part
 };
+// `wood_sigma` (px, > 0) smooths the wood's part instead of `sigma` (0 = sigma): a trunk and
+// branches kept apart where a crown's parts are smoothed into masses.
 std::vector<PartMask> project_part_masks(const SurfaceSamples& samples, const Camera& camera,
                                          double sigma, float level, uint32_t wood,
-                                         float wood_level = 0.0f);
+                                         float wood_level = 0.0f, double wood_sigma = 0.0);
 
 // The crown's parts (leaf clusters) painted back to front, as Dudley's blobs are: each part
 // covers the pixels where its own coverage 1 - exp(-density), the density smoothed by a
@@ -71,7 +73,8 @@ struct CrownParts {
   std::vector<Part> order;
 };
 CrownParts project_crown_parts(const SurfaceSamples& samples, const Camera& camera, double sigma,
-                               float level, uint32_t wood, float wood_level = 0.0f);
+                               float level, uint32_t wood, float wood_level = 0.0f,
+                               double wood_sigma = 0.0);
 
 // The plants of a scene of many plants painted back to front, as project_crown_parts paints the
 // parts, each instance's foliage (neither cluster 0 nor `wood`) one part labelled with its

@@ -50,6 +50,9 @@ using watercolor_internal::to_linear;
 constexpr float kPartSigma = 2.0f;
 constexpr float kPartLevel = 0.3f;
 constexpr float kWoodLevel = 0.6f;
+// The wood's part is smoothed by this share of the leaves' parts' width: the trunk and its
+// branches, not one patch over the space between them.
+constexpr double kWoodSmoothing = 0.5;
 
 // The key light's shadow is evaluated on cells of this many px at 1024 px.
 constexpr double kShadowCell = 4.0;
@@ -275,9 +278,9 @@ CrownParts scene_parts(const WatercolorImages& in, const Shared& s, std::vector<
   Camera camera = in.camera;
   camera.width = (s.size.width + f - 1) / f;
   camera.height = (s.size.height + f - 1) / f;
-  CrownParts parts =
-      project_crown_parts(*in.samples, camera, kPartSigma * std::max(s.sigma, 2.0f) / float(f),
-                          kPartLevel, in.wood_cluster, kWoodLevel);
+  const double sigma = kPartSigma * std::max(s.sigma, 2.0f) / float(f);
+  CrownParts parts = project_crown_parts(*in.samples, camera, sigma, kPartLevel, in.wood_cluster,
+                                         kWoodLevel, kWoodSmoothing * sigma);
   if (f > 1) {
     const cv::Rect crop(0, 0, s.size.width, s.size.height);
     cv::resize(parts.label, parts.label, {camera.width * f, camera.height * f}, 0, 0,

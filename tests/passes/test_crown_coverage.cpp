@@ -96,6 +96,24 @@ TEST(CrownCoverage, PartsArePaintedBackToFront) {
   EXPECT_EQ(w.label.at<int>(50, 50), 9);
 }
 
+// The wood's own smoothing (wood_sigma): two branches 6 px apart are one patch of wood at the
+// leaves' smoothing and stay two, with bare paper between them, at a narrower one.
+TEST(CrownCoverage, TheWoodKeepsItsBranchesApartAtItsOwnSmoothing) {
+  SurfaceSamples s;
+  add_rectangle(s, -0.06f, 0.0f, -2.0f, 0.06f, 1.0f, 7);  // two vertical branches, 3 px wide
+  add_rectangle(s, 0.06f, 0.0f, -2.0f, 0.06f, 1.0f, 7);   // (x in [-0.09, -0.03], [0.03, 0.09])
+  add_rectangle(s, 0.8f, 0.8f, -1.0f, 0.2f, 0.2f, 5);     // leaves away from them
+  const Camera cam = ortho_camera(100);
+  const CrownParts one = project_crown_parts(s, cam, 4.0, 0.3f, 7, 0.3f);
+  EXPECT_EQ(one.label.at<int>(50, 50), 7);  // the gap between them painted as wood
+  const CrownParts two = project_crown_parts(s, cam, 4.0, 0.3f, 7, 0.3f, 1.0);
+  EXPECT_EQ(two.label.at<int>(50, 50), 0);  // the gap bare
+  EXPECT_EQ(two.label.at<int>(50, 47), 7);  // each branch wood
+  EXPECT_EQ(two.label.at<int>(50, 53), 7);
+  EXPECT_EQ(one.label.at<int>(10, 90), 5);  // the leaves (y up) as before
+  EXPECT_EQ(two.label.at<int>(10, 90), 5);
+}
+
 // In a scene of many plants the plants are the parts: two instances' foliage (clusters 5 and 9 in
 // the first, 6 in the second, so clusters do not follow instances), their wood left out.
 TEST(CrownCoverage, PlantsArePaintedBackToFrontByInstance) {
