@@ -113,18 +113,10 @@ cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const 
   cv::divide(r, cv::max(w, 1e-6f), r);
   cv::Mat t(rank.size(), CV_32FC1);
   const float lo = p.lightest, hi = std::max(p.darkest, p.lightest + 1e-3f);
-  // The ends of the curve once: most of the picture is paper (0) or beyond `darkest`.
-  const float at0 = std::pow(0.0f, p.gamma), at1 = std::pow(1.0f, p.gamma);
-  for_bands(r.rows, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const float* in = r.ptr<float>(y);
-      float* out = t.ptr<float>(y);
-      for (int x = 0; x < r.cols; ++x) {
-        const float v = std::clamp((in[x] - lo) / (hi - lo), 0.0f, 1.0f);
-        out[x] = v <= 0.0f ? at0 : (v >= 1.0f ? at1 : std::pow(v, p.gamma));
-      }
-    }
-  });
+  for (int y = 0; y < r.rows; ++y)
+    for (int x = 0; x < r.cols; ++x)
+      t.at<float>(y, x) =
+          std::pow(std::clamp((r.at<float>(y, x) - lo) / (hi - lo), 0.0f, 1.0f), p.gamma);
   return t;
 }
 

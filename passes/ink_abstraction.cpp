@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "passes/pass_common.h"
 
 namespace sylva {
 
@@ -19,21 +20,9 @@ cv::Mat disc(double diameter) {
 
 // The connected pieces (8-neighbours) of `parts` whose bounding box's diagonal is >= length.
 cv::Mat long_pieces(const cv::Mat& parts, double length) {
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(parts, labels, stats, centroids, 8, CV_32S);
-  std::vector<uint8_t> keep(size_t(std::max(n, 1)), 0);
-  for (int i = 1; i < n; ++i) {
-    const double w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
-    keep[size_t(i)] = std::hypot(w, h) >= length ? 255 : 0;
-  }
-  cv::Mat out(parts.size(), CV_8UC1);
-  for (int y = 0; y < parts.rows; ++y) {
-    const int* l = labels.ptr<int>(y);
-    uint8_t* o = out.ptr<uint8_t>(y);
-    for (int x = 0; x < parts.cols; ++x)
-      o[x] = keep[size_t(l[x])];
-  }
-  return out;
+  return pieces_where(parts, [length](const int* st) {
+    return std::hypot(double(st[cv::CC_STAT_WIDTH]), double(st[cv::CC_STAT_HEIGHT])) >= length;
+  });
 }
 
 // Sets the connected pieces of `mask` (8-neighbours) smaller than `area` px to `value` in
@@ -41,23 +30,14 @@ cv::Mat long_pieces(const cv::Mat& parts, double length) {
 // `keep_border`.
 void drop_small(cv::Mat& mask, cv::Mat& field, double area, bool keep_border, uint8_t value,
                 float field_value) {
-  cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
-  std::vector<uint8_t> drop(size_t(std::max(n, 1)), 0);
-  for (int i = 1; i < n; ++i) {
-    const int x = stats.at<int>(i, cv::CC_STAT_LEFT), y = stats.at<int>(i, cv::CC_STAT_TOP);
-    const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+  const cv::Mat small = pieces_where(mask, [&](const int* st) {
+    const int x = st[cv::CC_STAT_LEFT], y = st[cv::CC_STAT_TOP];
+    const int w = st[cv::CC_STAT_WIDTH], h = st[cv::CC_STAT_HEIGHT];
     const bool border = x == 0 || y == 0 || x + w == mask.cols || y + h == mask.rows;
-    drop[size_t(i)] = stats.at<int>(i, cv::CC_STAT_AREA) < area && !(keep_border && border);
-  }
-  for (int y = 0; y < mask.rows; ++y) {
-    const int* l = labels.ptr<int>(y);
-    for (int x = 0; x < mask.cols; ++x)
-      if (drop[size_t(l[x])]) {
-        mask.at<uint8_t>(y, x) = value;
-        field.at<float>(y, x) = field_value;
-      }
-  }
+    return st[cv::CC_STAT_AREA] < area && !(keep_border && border);
+  });
+  mask.setTo(value, small);
+  field.setTo(field_value, small);
 }
 
 float bilinear(const cv::Mat& m, float x, float y) {

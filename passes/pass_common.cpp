@@ -1,7 +1,9 @@
 #include "passes/pass_common.h"
 
 #include <algorithm>
+#include <opencv2/imgproc.hpp>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -14,6 +16,24 @@ double reference_scale(const cv::Size& size) {
 void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* what) {
   SYLVA_CHECK(!m.empty() && m.type() == type && (size.empty() || m.size() == size),
               std::string("image pass input '") + what + "' has the wrong type or size");
+}
+
+cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* stats)>& pick) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<uint8_t> taken(size_t(std::max(n, 1)), 0);
+  for (int i = 1; i < n; ++i)
+    taken[size_t(i)] = pick(stats.ptr<int>(i)) ? 255 : 0;
+  cv::Mat out(mask.size(), CV_8UC1);
+  for_bands(mask.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const int32_t* l = labels.ptr<int32_t>(y);
+      uint8_t* o = out.ptr<uint8_t>(y);
+      for (int x = 0; x < mask.cols; ++x)
+        o[x] = taken[size_t(l[x])];
+    }
+  });
+  return out;
 }
 
 }  // namespace sylva

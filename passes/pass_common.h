@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <opencv2/core.hpp>
 
 namespace sylva {
@@ -17,6 +18,11 @@ double reference_scale(const cv::Size& size);
 // A programming error (SYLVA_CHECK) unless m has the given type and size (size empty = any):
 // passes check the images the graph hands them once, at the top.
 void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* what);
+
+// The connected pieces (8-neighbours) of `mask` (CV_8UC1, non-zero = in) that `pick` takes, given
+// each piece's row of cv::connectedComponentsWithStats (CC_STAT_LEFT ... CC_STAT_AREA):
+// CV_8UC1, 255 on them.
+cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* stats)>& pick);
 
 // Calls f(begin, end) for bands of [0, count) (image rows, or columns) in parallel through
 // cv::parallel_for_, a few bands per thread (a band per row would cost each row the

@@ -6,6 +6,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "passes/pass_common.h"
+
 namespace sylva::watercolor_internal {
 
 // The narrowest wood the watercolor paints where it is seen, px at 1024 px.
@@ -13,27 +15,6 @@ constexpr double kSeenWoodWidth = 5.0;
 // The least area of a piece of it, px at 1024 px: a branch, not the spot where a twig turns
 // towards the view for a few pixels.
 constexpr double kLeastWoodArea = 60.0;
-
-namespace {
-
-// The 8-connected pieces of `mask` (CV_8UC1) under `least` px cleared.
-void drop_specks(cv::Mat& mask, double least) {
-  cv::Mat labels, stats, centres;
-  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centres, 8, CV_32S);
-  std::vector<uint8_t> keep(size_t(std::max(n, 1)), 0);
-  for (int i = 1; i < n; ++i)
-    keep[size_t(i)] = double(stats.at<int>(i, cv::CC_STAT_AREA)) >= least ? 255 : 0;
-  for_bands(mask.rows, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const int32_t* l = labels.ptr<int32_t>(y);
-      uint8_t* m = mask.ptr<uint8_t>(y);
-      for (int x = 0; x < mask.cols; ++x)
-        m[x] = keep[size_t(l[x])];
-    }
-  });
-}
-
-}  // namespace
 
 // Where rims may darken (Shared::rim_ok): within reach of the wash's blur and wobble of the
 // foliage's outer edge, or of a border between two washes whose depths differ by more than
@@ -99,7 +80,9 @@ cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale) {
   const int k = std::max(3, int(std::lround(kSeenWoodWidth * scale)));
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN,
                    cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
-  drop_specks(mask, kLeastWoodArea * scale * scale);
+  const double least = kLeastWoodArea * scale * scale;
+  mask.setTo(0,
+             pieces_where(mask, [least](const int* st) { return st[cv::CC_STAT_AREA] < least; }));
   cv::GaussianBlur(mask, seen, cv::Size(0, 0), 0.7, 0.7, cv::BORDER_REPLICATE);
   return seen;
 }
