@@ -12,7 +12,7 @@ PREFIX ?= /usr/local
 LAUNCHER := $(if $(shell command -v ccache),-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 export CCACHE_BASEDIR ?= $(CURDIR)
 
-.PHONY: all setup setup-test sylva build test egl-only demo gallery line-sheet installable install package sanitize \
+.PHONY: all setup setup-test sylva build test egl-only demo gallery line-sheet wash-sheet installable install package sanitize \
 	fuzz perf golden docs format clean
 
 all: build
@@ -54,7 +54,13 @@ gallery: sylva
 
 # Rewrites docs/line-sheet.png (standard, ink and pen on every shared tree).
 line-sheet: sylva
-	@scripts/line_sheet.sh $(BUILD)/cli/sylva docs/line-sheet.png
+	@scripts/tree_sheet.sh $(BUILD)/cli/sylva docs/line-sheet.png
+
+# Rewrites docs/wash-sheet.jpg (standard, watercolor, pen-and-wash and toon-ink on every shared
+# tree).
+wash-sheet: sylva
+	@scripts/tree_sheet.sh $(BUILD)/cli/sylva docs/wash-sheet.jpg 256 \
+	  standard,watercolor,pen-and-wash,toon-ink
 
 # What an install holds: sylva, its plugin, the man page (not the tests).
 installable: setup $(BUILD)/build.ninja

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 
@@ -58,6 +60,45 @@ LeafPiece make_piece(const SurfaceSamples& s, const std::vector<uint32_t>& order
   return piece;
 }
 
+// Keyed samples [begin, end) of one element: its extent (box diagonal) and area.
+std::pair<float, double> element_size(const SurfaceSamples& s, const std::vector<uint32_t>& order,
+                                      size_t begin, size_t end) {
+  glm::vec3 lo(s.positions[order[begin]]), hi = lo;
+  double area = 0.0;
+  for (size_t k = begin; k < end; ++k) {
+    lo = glm::min(lo, s.positions[order[k]]);
+    hi = glm::max(hi, s.positions[order[k]]);
+    area += s.areas[order[k]];
+  }
+  return {glm::length(hi - lo), area};
+}
+
+// The area-weighted median of the elements' extents (keyed by element, then cell): each run of
+// one (instance, element) is an element; element 0 (none named) is left out.
+float median_extent(const SurfaceSamples& s,
+                    const std::vector<std::pair<PieceKey, uint32_t>>& keyed,
+                    const std::vector<uint32_t>& order) {
+  std::vector<std::pair<float, double>> sizes;
+  for (size_t begin = 0; begin < keyed.size();) {
+    const PieceKey& k = keyed[begin].first;
+    size_t end = begin + 1;
+    while (end < keyed.size() && keyed[end].first.instance == k.instance &&
+           keyed[end].first.primitive == k.primitive)
+      ++end;
+    if (k.primitive != 0) sizes.push_back(element_size(s, order, begin, end));
+    begin = end;
+  }
+  if (sizes.empty()) return 0.0f;
+  std::sort(sizes.begin(), sizes.end());
+  double total = 0.0;
+  for (const auto& e : sizes)
+    total += e.second;
+  double below = 0.0;
+  for (const auto& [extent, area] : sizes)
+    if ((below += area) >= 0.5 * total) return extent;
+  return sizes.back().first;
+}
+
 }  // namespace
 
 LeafPieces make_leaf_pieces(const SurfaceSamples& s, uint32_t wood, float cell) {
@@ -95,6 +136,7 @@ LeafPieces make_leaf_pieces(const SurfaceSamples& s, uint32_t wood, float cell) 
       out.pieces[n - 1].cut = out.pieces[n - 2].cut = true;
     begin = end;
   }
+  if (with_primitives) out.leaf_extent = median_extent(s, keyed, order);
   return out;
 }
 

@@ -38,11 +38,22 @@ struct LeafPiece {
 struct LeafPieces {
   std::vector<LeafPiece> pieces;  // by (instance, element, cell)
   float cell = 0.0f;              // scene units
+  // The foliage elements' typical size: the area-weighted median of their extents (the
+  // diagonal of the box around an element's samples), scene units; 0 = unknown (the samples
+  // name no elements). A fern's fronds span a sixth of its foliage's diagonal, a tree's leaves
+  // and leaf cards under a twentieth.
+  float leaf_extent = 0.0f;
   size_t size() const { return pieces.size(); }
 };
 
 // The share of the foliage's diagonal one cell spans (an element larger than one is cut).
 inline constexpr float kPieceCells = 1.0f / 48.0f;
+
+// `pieces.leaf_extent` as a share of the foliage's diagonal (the cell is kPieceCells of it);
+// 0 when unknown.
+inline float leaf_share(const LeafPieces& pieces) {
+  return pieces.cell > 0.0f ? pieces.leaf_extent * kPieceCells / pieces.cell : 0.0f;
+}
 
 // The pieces of the foliage samples of `samples` (neither cluster 0 nor `wood`, the trunk and
 // branches' cluster; 0 = none) at cells of `cell` scene units (> 0 and finite).

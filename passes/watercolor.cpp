@@ -272,13 +272,14 @@ std::vector<Layer> back_to_front(const std::vector<Layer>& layers, const cv::Mat
 // its cluster instead of flickering with the leaves that land on pixel centres. Each layer is
 // ordered by its part's mean depth and its box grown to the part's region.
 CrownParts scene_parts(const WatercolorImages& in, const Shared& s, std::vector<Layer>& layers) {
+  const double smoothing = large_leaved(in.pieces.get()) ? kLargeLeafSmoothing : 1.0;
   // At the resolution the washes' masks are blurred at (paint_layer's), then up-sampled: the
   // parts are smooth at that scale.
   const int f = std::clamp(int(s.sigma / 2.0f), 1, 4);
   Camera camera = in.camera;
   camera.width = (s.size.width + f - 1) / f;
   camera.height = (s.size.height + f - 1) / f;
-  const double sigma = kPartSigma * std::max(s.sigma, 2.0f) / float(f);
+  const double sigma = smoothing * kPartSigma * std::max(s.sigma, 2.0f) / float(f);
   CrownParts parts = project_crown_parts(*in.samples, camera, sigma, kPartLevel, in.wood_cluster,
                                          kWoodLevel, kWoodSmoothing * sigma);
   if (f > 1) {
@@ -453,8 +454,9 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   bool masses = false;
   WatercolorImages in = with_masses(input, p, scale, masses);
   Shared s = shared_settings(in, p, scale);
-  // A mass is laid in one wash: gaps up to kMassClose of its size are painted over.
-  if (masses) s.close = float(kMassClose * p.mass * scale);
+  // A mass is laid in one wash: gaps up to kMassClose of its size are painted over (not between
+  // large leaves: kLargeLeaf).
+  if (masses && !large_leaved(in.pieces.get())) s.close = float(kMassClose * p.mass * scale);
   const std::vector<Layer> sorted = ordered_layers(in, use_albedo, s);
   // The masses' ids are read only to order the washes: the plant's pixels and the wood's are
   // the id buffer's own.

@@ -155,8 +155,9 @@ struct WatercolorImages {
   // Scene units per px at the plant's distance (passes/hatching.h units_per_px): the masses'
   // size in the scene. 0 = one wash per cluster.
   double units_per_px = 0.0;
-  // The scene's leaf pieces (npr/leaf_pieces.h) for the marks, or null (no detail layer), and
-  // the key light whose shadow through the crown darkens them.
+  // The scene's leaf pieces (npr/leaf_pieces.h) for the marks and the leaves' size (a plant of
+  // large leaves is painted leaf by leaf: passes/watercolor_masses.h large_leaved), or null (no
+  // detail layer), and the key light whose shadow through the crown darkens the marks.
   std::shared_ptr<const LeafPieces> pieces;
   KeyLight light;
   // The colour target's clear (linear RGBA, RasterRequest::background). Transparent black: the
@@ -200,7 +201,7 @@ struct WatercolorResources {
   Camera camera;              // the frame's (width 0 = none: positions from `position`)
   uint32_t wood_cluster = 0;  // WatercolorImages::wood_cluster
   double units_per_px = 0.0;  // WatercolorImages::units_per_px
-  LeafPiecesHandle pieces{};  // "leaf-pieces", or none (no marks)
+  LeafPiecesHandle pieces{};  // "leaf-pieces", or none (no marks, no large_leaved)
   KeyLight light;             // WatercolorImages::light
   glm::vec4 clear{0.0f};      // WatercolorImages::clear
 };

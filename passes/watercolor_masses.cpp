@@ -94,4 +94,8 @@ std::shared_ptr<const SurfaceSamples> mass_samples(
   return out;
 }
 
+bool large_leaved(const LeafPieces* pieces) {
+  return pieces && leaf_share(*pieces) >= kLargeLeaf;
+}
+
 }  // namespace sylva

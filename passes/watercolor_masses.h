@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <unordered_map>
 
+#include "npr/leaf_pieces.h"
 #include "npr/surface_samples.h"
 
 namespace sylva {
@@ -29,5 +30,17 @@ cv::Mat mass_ids(const cv::Mat& id, const std::unordered_map<uint32_t, uint32_t>
 // The samples with each cluster replaced by its mass.
 std::shared_ptr<const SurfaceSamples> mass_samples(
     const SurfaceSamples& samples, const std::unordered_map<uint32_t, uint32_t>& mass_of);
+
+// A plant of large leaves (a fern's fronds) is painted leaf by leaf: when its elements' typical
+// extent (LeafPieces::leaf_extent) is at least kLargeLeaf of the foliage's diagonal (a fern's
+// fronds about 0.16, a tree's leaves and leaf cards under 0.05), a mass closes no gaps between
+// its leaves and the crown's parts are smoothed kLargeLeafSmoothing as much, so each frond keeps
+// its shape instead of melting into one patch per plant. A property of the scene, not the view:
+// a turntable's frames all paint the same way.
+inline constexpr float kLargeLeaf = 0.1f;
+inline constexpr double kLargeLeafSmoothing = 0.25;
+
+// Whether `pieces` (null = unknown: no) are a plant of large leaves.
+bool large_leaved(const LeafPieces* pieces);
 
 }  // namespace sylva

@@ -24,11 +24,13 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
   if (albedo && res.albedo.valid()) reads.push_back(res.albedo);
   if (position) reads.push_back(res.position);
   if (res.samples.valid()) reads.push_back(res.samples);
-  const bool marks = p.marks > 0.0f && res.pieces.valid();
-  if (marks) reads.push_back(res.pieces);
+  // The pieces give the marks, and the leaves' size the washes follow (passes/watercolor_masses.h
+  // large_leaved).
+  const bool pieces = res.pieces.valid();
+  if (pieces) reads.push_back(res.pieces);
   const auto out = graph.resource<cv::Mat>("watercolor");
   graph.add_pass("watercolor", reads, {out},
-                 [res, view_to_world, p, albedo, position, marks, out](PassContext& ctx) {
+                 [res, view_to_world, p, albedo, position, pieces, out](PassContext& ctx) {
                    WatercolorImages in;
                    in.color = ctx.read<cv::Mat>(res.color);
                    in.id = ctx.read<cv::Mat>(res.id);
@@ -42,7 +44,7 @@ ImageHandle add_watercolor_pass(RenderGraph& graph, const WatercolorResources& r
                    in.units_per_px = res.units_per_px;
                    in.light = res.light;
                    in.clear = res.clear;
-                   if (marks) in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
+                   if (pieces) in.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(res.pieces);
                    ctx.write(out, watercolor(in, view_to_world, p));
                  });
   return out;

@@ -1,8 +1,9 @@
 // The foliage's pieces (npr/leaf_pieces.h): one per element (a leaf) when it fits in a cell, an
 // element larger than a cell cut into one piece per cell it crosses (each marked cut), the
 // areas kept, the wood and cluster 0 left out, the centre and covariance those of the element's
-// samples; the key light reaching a point through the samples (npr/sample_shadow.h) falls with
-// depth behind the first surface and is 1 in front of it.
+// samples, and the leaves' size the area-weighted median of the elements' extents; the key light
+// reaching a point through the samples (npr/sample_shadow.h) falls with depth behind the first
+// surface and is 1 in front of it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,6 +64,22 @@ TEST(LeafPieces, TheSameSamplesGiveTheSamePieces) {
     EXPECT_EQ(a.pieces[i].centre, b.pieces[i].centre);
     EXPECT_EQ(a.pieces[i].area, b.pieces[i].area);
   }
+}
+
+TEST(LeafPieces, TheLeavesSizeIsTheAreaWeightedMedianOfTheElementsExtents) {
+  SurfaceSamples s;
+  add_line(s, 0.0f, 1.0f, 100, 1, 4);   // extent 0.99, area 1
+  add_line(s, 3.0f, 2.0f, 100, 2, 4);   // extent 1.98, area 1
+  add_line(s, 6.0f, 0.5f, 250, 3, 4);   // extent 0.498, area 2.5: the median by area
+  add_line(s, 9.0f, 40.0f, 400, 4, 9);  // wood: not a leaf
+  add_line(s, 0.0f, 40.0f, 400, 5, 0);  // not a plant part
+  const LeafPieces p = make_leaf_pieces(s, 9, 1.0f);
+  EXPECT_NEAR(p.leaf_extent, 0.5f * 249.0f / 250.0f, 1e-4f);
+  EXPECT_NEAR(leaf_share(p), p.leaf_extent * kPieceCells, 1e-6f);
+  // Samples that name no elements: the size is unknown.
+  s.primitives.clear();
+  EXPECT_EQ(make_leaf_pieces(s, 9, 1.0f).leaf_extent, 0.0f);
+  EXPECT_EQ(leaf_share(LeafPieces{}), 0.0f);
 }
 
 TEST(SampleShadow, TheLightFallsWithDepthBehindTheFirstSurface) {
