@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
@@ -52,65 +53,109 @@ struct HatchStyle {
   double factor = 1;  // output px per working px
 };
 
-// The strokes of group g's layer (0: along dir, 1: across it) where regions == g.label and the
-// tone passes each line's level.
-void hatch_group(const Group& g, int layer, const cv::Mat& regions, const cv::Mat& tone,
-                 const HatchStyle& s, std::vector<Stroke>& out) {
-  const cv::Point2f d = layer == 0 ? g.dir : cv::Point2f(-g.dir.y, g.dir.x);
-  const cv::Point2f m(-d.y, d.x);
-  // The box's extent along d and m, relative to the anchor.
-  float u0 = 1e30f, u1 = -1e30f, v0 = 1e30f, v1 = -1e30f;
+// Where group g's layer (0: along dir, 1: across it) is hatched: the lines' direction d, their
+// normal m, the group's box's extent along d (u0, u1) and the lines' indices k0..k1 across it.
+struct HatchLines {
+  cv::Point2f d, m;
+  float u0 = 1e30f, u1 = -1e30f;
+  int64_t k0 = 0, k1 = -1;
+};
+
+HatchLines hatch_lines(const Group& g, int layer, const HatchStyle& s) {
+  HatchLines h;
+  h.d = layer == 0 ? g.dir : cv::Point2f(-g.dir.y, g.dir.x);
+  h.m = cv::Point2f(-h.d.y, h.d.x);
+  float v0 = 1e30f, v1 = -1e30f;
   for (const cv::Point2f c : {cv::Point2f(float(g.box.x), float(g.box.y)),
                               cv::Point2f(float(g.box.br().x), float(g.box.y)),
                               cv::Point2f(float(g.box.x), float(g.box.br().y)),
                               cv::Point2f(float(g.box.br().x), float(g.box.br().y))}) {
     const cv::Point2f r = c - g.anchor;
-    u0 = std::min(u0, r.dot(d)), u1 = std::max(u1, r.dot(d));
-    v0 = std::min(v0, r.dot(m)), v1 = std::max(v1, r.dot(m));
+    h.u0 = std::min(h.u0, r.dot(h.d)), h.u1 = std::max(h.u1, r.dot(h.d));
+    v0 = std::min(v0, r.dot(h.m)), v1 = std::max(v1, r.dot(h.m));
   }
-  const int64_t k0 = int64_t(std::floor(v0 / s.spacing)), k1 = int64_t(std::ceil(v1 / s.spacing));
+  h.k0 = int64_t(std::floor(v0 / s.spacing));
+  h.k1 = int64_t(std::ceil(v1 / s.spacing));
+  return h;
+}
+
+// The strokes of line k of group g's layer, where regions == g.label and the tone passes the
+// line's level.
+void hatch_line(const Group& g, int layer, const HatchLines& h, int64_t k, const cv::Mat& regions,
+                const cv::Mat& tone, const HatchStyle& s, std::vector<Stroke>& out) {
   const float from = layer == 0 ? 0.0f : s.cross;
-  for (int64_t k = k0; k <= k1; ++k) {
-    const float level = from + (1.0f - from) * line_level(k);
-    const double stagger =
-        s.length * group_hash01(uint64_t(g.label) * 4 + uint64_t(layer), uint64_t(k) ^ s.seed);
-    Stroke st;
-    st.cls = LineClass::Tone;
-    st.opacity = s.opacity;
-    st.width = s.width;
-    int64_t piece = INT64_MIN;
-    auto flush = [&]() {
-      if (st.points.size() >= 2 && double(st.points.size()) >= 0.3 * s.length) out.push_back(st);
-      st.points.clear();
-      st.widths.clear();
-    };
-    for (double u = std::floor(u0); u <= u1; u += 1.0) {
-      const cv::Point2f q = g.anchor + float(k * s.spacing) * m + float(u) * d;
-      const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
-      const int64_t here = int64_t(std::floor((u - stagger) / s.length));
-      // A short gap at each stroke's start, so the strokes read as strokes.
-      const bool gap = (u - stagger) - double(here) * s.length < 0.15 * s.length;
-      float t = -1.0f;
-      if (x >= 0 && y >= 0 && x < regions.cols && y < regions.rows &&
-          regions.at<int>(y, x) == g.label)
-        t = tone.at<float>(y, x);
-      if (t <= level || gap || here != piece) flush();
-      piece = here;
-      if (t <= level || gap) continue;
-      st.points.emplace_back(q.x * float(s.factor), q.y * float(s.factor));
-      st.widths.push_back(s.width * smooth01(level, level + 0.1f, t));
-    }
-    flush();
+  const float level = from + (1.0f - from) * line_level(k);
+  const double stagger =
+      s.length * group_hash01(uint64_t(g.label) * 4 + uint64_t(layer), uint64_t(k) ^ s.seed);
+  Stroke st;
+  st.cls = LineClass::Tone;
+  st.opacity = s.opacity;
+  st.width = s.width;
+  int64_t piece = INT64_MIN;
+  auto flush = [&]() {
+    if (st.points.size() >= 2 && double(st.points.size()) >= 0.3 * s.length)
+      out.push_back(std::move(st));
+    st.points.clear();
+    st.widths.clear();
+  };
+  for (double u = std::floor(h.u0); u <= h.u1; u += 1.0) {
+    const cv::Point2f q = g.anchor + float(k * s.spacing) * h.m + float(u) * h.d;
+    const int x = int(std::floor(q.x)), y = int(std::floor(q.y));
+    const int64_t here = int64_t(std::floor((u - stagger) / s.length));
+    // A short gap at each stroke's start, so the strokes read as strokes.
+    const bool gap = (u - stagger) - double(here) * s.length < 0.15 * s.length;
+    float t = -1.0f;
+    if (x >= 0 && y >= 0 && x < regions.cols && y < regions.rows &&
+        regions.at<int>(y, x) == g.label)
+      t = tone.at<float>(y, x);
+    if (t <= level || gap || here != piece) flush();
+    piece = here;
+    if (t <= level || gap) continue;
+    st.points.emplace_back(q.x * float(s.factor), q.y * float(s.factor));
+    st.widths.push_back(s.width * smooth01(level, level + 0.1f, t));
   }
+  flush();
+}
+
+// Every group's first layer, then the first `crossed` groups' second, appended to `out` in that
+// order (each group's lines in order across it). The lines are hatched in parallel, a run of
+// kLinesPerTask lines of one group's layer a task: each stroke depends on its line alone.
+constexpr int64_t kLinesPerTask = 8;
+
+void hatch_all(const std::vector<Group>& groups, size_t crossed, const cv::Mat& regions,
+               const cv::Mat& tone, const HatchStyle& s, std::vector<Stroke>& out) {
+  struct Task {
+    size_t group;
+    int layer;
+    HatchLines lines;
+    int64_t k0, k1;  // inclusive
+  };
+  std::vector<Task> tasks;
+  for (size_t j = 0; j < groups.size() + crossed; ++j) {
+    const int layer = j < groups.size() ? 0 : 1;
+    const size_t i = layer == 0 ? j : j - groups.size();
+    const HatchLines h = hatch_lines(groups[i], layer, s);
+    for (int64_t k = h.k0; k <= h.k1; k += kLinesPerTask)
+      tasks.push_back({i, layer, h, k, std::min(h.k1, k + kLinesPerTask - 1)});
+  }
+  std::vector<std::vector<Stroke>> each(tasks.size());
+  cv::parallel_for_(cv::Range(0, int(tasks.size())), [&](const cv::Range& r) {
+    for (int t = r.start; t < r.end; ++t) {
+      const Task& task = tasks[size_t(t)];
+      for (int64_t k = task.k0; k <= task.k1; ++k)
+        hatch_line(groups[task.group], task.layer, task.lines, k, regions, tone, s,
+                   each[size_t(t)]);
+    }
+  });
+  for (std::vector<Stroke>& strokes : each)
+    std::move(strokes.begin(), strokes.end(), std::back_inserter(out));
 }
 
 // Tone t in [0, 1] from a rank image (0 off the regions), smoothed over the regions.
 cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const PenParams& p) {
-  cv::Mat mask, r, w;
+  cv::Mat mask;
   inside.convertTo(mask, CV_32F, 1.0 / 255.0);
-  cv::GaussianBlur(rank.mul(mask), r, {0, 0}, std::max(0.5, sigma));
-  cv::GaussianBlur(mask, w, {0, 0}, std::max(0.5, sigma));
-  cv::divide(r, cv::max(w, 1e-6f), r);
+  const cv::Mat r = normalised_blur(rank.mul(mask), mask, sigma);
   cv::Mat t(rank.size(), CV_32FC1);
   const float lo = p.lightest, hi = std::max(p.darkest, p.lightest + 1e-3f);
   for (int y = 0; y < r.rows; ++y)
@@ -151,7 +196,8 @@ std::vector<Group> clump_groups(const LeafLayer& layer, const cv::Mat& normal, c
       const int ox = std::min(normal.cols - 1, int((x + 0.5) * layer.factor)),
                 oy = std::min(normal.rows - 1, int((y + 0.5) * layer.factor));
       const cv::Vec3f n = normal.at<cv::Vec3f>(oy, ox);
-      const double len = cv::norm(n);
+      // (cv::norm would take the Vec as an InputArray: a library call per pixel.)
+      const double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
       if (len > 0.0) normals[size_t(label - 1)] += cv::Vec3d(n) / len;
     }
   std::vector<double> weight(groups.size(), 0.0);
@@ -183,6 +229,12 @@ std::vector<Group> clump_groups(const LeafLayer& layer, const cv::Mat& normal, c
   return groups;
 }
 
+// The wood's groups are labelled from here up, apart from the crown's clumps (labelled from 1,
+// one per cluster): a wood group's strokes, seeded by its label, do not depend on how many
+// clumps there are, so `ink` (the wood only) hatches the wood as `pen` does without finding
+// the clumps.
+constexpr int kWoodLabels = 1 << 24;
+
 // The wood groups: one per connected piece of the wood the front buffer shows, along its
 // principal axis; labels after `first`.
 std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regions) {
@@ -211,28 +263,33 @@ std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regio
   return groups;
 }
 
-// The wood's tone: its darkness (the bark's shading) ranked among the wood's pixels.
+// The wood's tone: its darkness (the bark's shading) ranked among the wood's pixels, the
+// darkness told apart to 1/kRankBins (a histogram, not a sort of every pixel): a pixel's rank is
+// the share below its bin plus half its bin's, so ties (an evenly shaded branch) share the middle
+// of their run.
+constexpr int kRankBins = 1 << 16;
+
 cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
   const cv::Mat wood = layer.front == kWoodFront;
   cv::Mat rank(layer.front.size(), CV_32FC1, cv::Scalar(0));
-  if (cv::countNonZero(wood) == 0) return rank;
+  const int n = cv::countNonZero(wood);
+  if (n == 0) return rank;
   cv::Mat dark = tone_darkness(color);
   cv::resize(dark, dark, layer.front.size(), 0, 0, cv::INTER_AREA);
-  std::vector<float> values;
+  const auto bin = [](float v) { return std::clamp(int(v * float(kRankBins)), 0, kRankBins - 1); };
+  std::vector<int> count(kRankBins, 0);
   for (int y = 0; y < wood.rows; ++y)
     for (int x = 0; x < wood.cols; ++x)
-      if (wood.at<uint8_t>(y, x)) values.push_back(dark.at<float>(y, x));
-  std::sort(values.begin(), values.end());
+      if (wood.at<uint8_t>(y, x)) ++count[size_t(bin(dark.at<float>(y, x)))];
+  std::vector<float> mid(kRankBins);
+  int64_t below = 0;
+  for (int b = 0; b < kRankBins; ++b) {
+    mid[size_t(b)] = float((double(below) + 0.5 * count[size_t(b)]) / double(n));
+    below += count[size_t(b)];
+  }
   for (int y = 0; y < wood.rows; ++y)
     for (int x = 0; x < wood.cols; ++x)
-      if (wood.at<uint8_t>(y, x)) {
-        const float v = dark.at<float>(y, x);
-        // Mid-rank: ties (an evenly shaded branch) share the middle of their run.
-        const auto lo = std::lower_bound(values.begin(), values.end(), v);
-        const auto hi = std::upper_bound(lo, values.end(), v);
-        rank.at<float>(y, x) =
-            float((double(lo - values.begin()) + 0.5 * double(hi - lo)) / double(values.size()));
-      }
+      if (wood.at<uint8_t>(y, x)) rank.at<float>(y, x) = mid[size_t(bin(dark.at<float>(y, x)))];
   return rank;
 }
 
@@ -255,38 +312,41 @@ StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const 
   s.opacity = p.opacity;
   s.cross = p.cross;
   s.seed = uint64_t(p.seed);
-  cv::Mat regions;
-  // The clumps are found even when only the wood is hatched: their count numbers the wood's
-  // groups (whose labels seed the strokes), so `ink`'s wood hatching is `pen`'s.
-  std::vector<Group> groups = clump_groups(layer, normal, p, regions);
+  cv::Mat regions(layer.front.size(), CV_32SC1, cv::Scalar(0));
   cv::Mat tone(layer.front.size(), CV_32FC1, cv::Scalar(0));
+  std::vector<Group> groups;
   if (what.foliage) {
+    groups = clump_groups(layer, normal, p, regions);
     // A clump as the eye groups it: small pieces of other clusters seen through it belong to it.
     regions = majority_labels(regions, std::max(1, int(std::lround(0.5 * detail * scale / f))));
     tone = tone_of(layer.rank, regions > 0, detail * scale / f, p);
   }
-  const std::vector<Group> wood = wood_groups(layer, int(groups.size()), regions);
-  const cv::Mat wood_tone =
-      tone_of(wood_rank(layer, color), layer.front == kWoodFront, 0.5 * detail * scale / f, p);
-  wood_tone.copyTo(tone, layer.front == kWoodFront);
-  if (!what.foliage) groups.clear();
-  if (what.wood) groups.insert(groups.end(), wood.begin(), wood.end());
+  const size_t clumps = groups.size();
+  if (what.wood) {
+    const std::vector<Group> wood = wood_groups(layer, kWoodLabels, regions);
+    const cv::Mat wood_tone =
+        tone_of(wood_rank(layer, color), layer.front == kWoodFront, 0.5 * detail * scale / f, p);
+    wood_tone.copyTo(tone, layer.front == kWoodFront);
+    groups.insert(groups.end(), wood.begin(), wood.end());
+  }
   // Wood is hatched along its axis only: crossing lines on a branch read as a net.
-  const size_t clumps = what.foliage ? groups.size() - (what.wood ? wood.size() : 0) : 0;
-  for (int l = 0; l < (p.cross < 1.0f ? 2 : 1); ++l)
-    for (size_t i = 0; i < (l == 0 ? groups.size() : clumps); ++i)
-      hatch_group(groups[i], l, regions, tone, s, d.strokes);
+  hatch_all(groups, p.cross < 1.0f ? clumps : 0, regions, tone, s, d.strokes);
   return d;
 }
 
 Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> layer,
                                             ImageHandle normal, ImageHandle color,
                                             const PenParams& p, double detail, HatchWhat what) {
-  SYLVA_CHECK(normal.valid() && color.valid(), "hatching needs the normal and color resources");
+  SYLVA_CHECK(color.valid() && (normal.valid() || !what.foliage),
+              "hatching needs the color resource, and the normals for the crown's clumps");
   const auto out = g.resource<StrokeDrawing>("hatching");
-  g.add_pass("hatching", {layer, normal, color}, {out}, [=](PassContext& ctx) {
-    ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), ctx.read<cv::Mat>(normal),
-                                ctx.read<cv::Mat>(color), p, detail, what));
+  // Only the crown's clumps read the normals (the raster then leaves them out for `ink`).
+  std::vector<ResourceRef> reads{layer, color};
+  if (what.foliage) reads.push_back(normal);
+  g.add_pass("hatching", reads, {out}, [=](PassContext& ctx) {
+    const cv::Mat normals = what.foliage ? ctx.read<cv::Mat>(normal) : cv::Mat();
+    ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), normals, ctx.read<cv::Mat>(color), p,
+                                detail, what));
   });
   return out;
 }

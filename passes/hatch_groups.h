@@ -22,7 +22,8 @@
 // passes pen.cross, its own levels spread over the rest of the tone.
 //
 // Reads a LeafLayer (its front, rank, clusters, centres and areas), the "normal" target
-// (CV_32FC3 view space, the frame's size) and the "color" target (the wood's shading); writes
+// (CV_32FC3 view space, the frame's size; only when the crown is hatched: empty otherwise) and
+// the "color" target (the wood's shading); writes
 // LineClass::Tone strokes in output px.
 #pragma once
 

@@ -166,6 +166,35 @@ cv::Mat own_windows(const cv::Mat& labels, int radius) {
   return (hi == f) & (lo == f);
 }
 
+// The label most common in the (2 radius + 1)² window at (x, y) of a labelled pixel, its own
+// where it ties for the most, else the smallest of those tied (0 is no label). `counts` is
+// scratch.
+int majority_at(const cv::Mat& labels, int x, int y, int radius,
+                std::vector<std::pair<int, int>>& counts) {
+  const int own = labels.at<int>(y, x);
+  counts.clear();
+  for (int v = std::max(0, y - radius); v <= std::min(labels.rows - 1, y + radius); ++v)
+    for (int u = std::max(0, x - radius); u <= std::min(labels.cols - 1, x + radius); ++u) {
+      const int l = labels.at<int>(v, u);
+      if (l == 0) continue;
+      auto it = std::find_if(counts.begin(), counts.end(),
+                             [l](const std::pair<int, int>& c) { return c.first == l; });
+      if (it == counts.end())
+        counts.emplace_back(l, 1);
+      else
+        ++it->second;
+    }
+  int best = own, most = 0;
+  for (const auto& [l, n] : counts)
+    if (n > most || (n == most && l != best && best != own && l < best)) {
+      best = l;
+      most = n;
+    } else if (n == most && l == own) {
+      best = own;
+    }
+  return best;
+}
+
 }  // namespace
 
 cv::Mat majority_labels(const cv::Mat& labels, int radius) {
@@ -176,33 +205,16 @@ cv::Mat majority_labels(const cv::Mat& labels, int radius) {
   const cv::Mat own_only = most_label < double(1 << 24) && labels.total() > 0
                                ? own_windows(labels, radius)
                                : cv::Mat(labels.size(), CV_8UC1, cv::Scalar(0));
-  std::vector<std::pair<int, int>> counts;  // label, count
-  for (int y = 0; y < labels.rows; ++y)
-    for (int x = 0; x < labels.cols; ++x) {
-      const int own = labels.at<int>(y, x);
-      if (own == 0 || own_only.at<uint8_t>(y, x)) continue;
-      counts.clear();
-      for (int v = std::max(0, y - radius); v <= std::min(labels.rows - 1, y + radius); ++v)
-        for (int u = std::max(0, x - radius); u <= std::min(labels.cols - 1, x + radius); ++u) {
-          const int l = labels.at<int>(v, u);
-          if (l == 0) continue;
-          auto it = std::find_if(counts.begin(), counts.end(),
-                                 [l](const std::pair<int, int>& c) { return c.first == l; });
-          if (it == counts.end())
-            counts.emplace_back(l, 1);
-          else
-            ++it->second;
-        }
-      int best = own, most = 0;
-      for (const auto& [l, n] : counts)
-        if (n > most || (n == most && l != best && best != own && l < best)) {
-          best = l;
-          most = n;
-        } else if (n == most && l == own) {
-          best = own;
-        }
-      out.at<int>(y, x) = best;
-    }
+  // Rows in parallel: each pixel reads the input labels only.
+  for_bands(labels.rows, [&](int y0, int y1) {
+    std::vector<std::pair<int, int>> counts;  // label, count
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < labels.cols; ++x) {
+        const int own = labels.at<int>(y, x);
+        if (own == 0 || own_only.at<uint8_t>(y, x)) continue;
+        out.at<int>(y, x) = majority_at(labels, x, y, radius, counts);
+      }
+  });
   return out;
 }
 

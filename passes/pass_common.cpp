@@ -36,4 +36,18 @@ cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* st
   return out;
 }
 
+cv::Mat normalised_blur(const cv::Mat& weighted, const cv::Mat& weight, double sigma) {
+  SYLVA_CHECK(
+      weighted.type() == CV_32FC1 && weight.type() == CV_32FC1 && weighted.size() == weight.size(),
+      "normalised_blur: two CV_32FC1 images of one size");
+  cv::Mat blurred[2];
+  const cv::Mat* in[2] = {&weighted, &weight};
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i)
+      cv::GaussianBlur(*in[i], blurred[i], {0, 0}, std::max(0.5, sigma));
+  });
+  cv::divide(blurred[0], cv::max(blurred[1], 1e-6f), blurred[0]);
+  return blurred[0];
+}
+
 }  // namespace sylva

@@ -24,10 +24,11 @@ void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* 
 // CV_8UC1, 255 on them.
 cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* stats)>& pick);
 
-// Calls f(begin, end) for bands of [0, count) (image rows, or columns) in parallel through
-// cv::parallel_for_, a few bands per thread (a band per row would cost each row the
-// per-band set-up). Callers write only what their band owns and reduce nothing across bands,
-// so the result does not depend on the number of threads or how the bands fall.
+// Normalised convolution: `weighted` (values times their weight, CV_32FC1) and `weight` (CV_32FC1,
+// the same size) each blurred (Gaussian, sigma px, at least 0.5), the first divided by the second
+// (at least 1e-6): the values averaged over where they are. The two blurs run side by side.
+cv::Mat normalised_blur(const cv::Mat& weighted, const cv::Mat& weight, double sigma);
+
 // 0 below e0, 1 above e1, Hermite-smooth between; a step at e1 when e1 <= e0.
 inline float smoothstep(float e0, float e1, float x) {
   if (e1 <= e0) return x >= e1 ? 1.0f : 0.0f;
@@ -35,6 +36,10 @@ inline float smoothstep(float e0, float e1, float x) {
   return t * t * (3.0f - 2.0f * t);
 }
 
+// Calls f(begin, end) for bands of [0, count) (image rows, or columns) in parallel through
+// cv::parallel_for_, a few bands per thread (a band per row would cost each row the
+// per-band set-up). Callers write only what their band owns and reduce nothing across bands,
+// so the result does not depend on the number of threads or how the bands fall.
 template <class F>
 void for_bands(int count, F f) {
   const double bands = std::max(1, cv::getNumThreads()) * 4.0;

@@ -23,33 +23,82 @@ struct Disc {
   float cx, cy, r, d;
 };
 
-// The wood samples splatted at the frame's resolution: each a disc of about its spacing, the
-// nearest kept; +inf where none. Projected in parallel, then splatted by bands of rows (the
-// nearest is the same in any order).
-cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size, uint32_t wood) {
-  const float inf = std::numeric_limits<float>::infinity();
-  cv::Mat z(size, CV_32FC1, cv::Scalar(inf));
+// A wood sample's disc's largest radius, px.
+constexpr float kMostDiscRadius = 8.0f;
+
+// The wood samples' discs in the frame (those in front of the camera), projected in parallel by
+// kDiscRuns runs of the samples, joined in order.
+constexpr int kDiscRuns = 64;
+
+std::vector<Disc> wood_discs(const SurfaceSamples& s, const Camera& camera, cv::Size size,
+                             uint32_t wood) {
   const glm::mat4 view_proj = camera.proj * camera.view;
   // px per scene unit at view depth d: proj[1][1] * h / 2 / d (perspective), without / d (ortho).
   const float focal = camera.proj[1][1] * 0.5f * float(size.height);
-  std::vector<Disc> discs(s.size(), Disc{0.0f, 0.0f, 0.0f, 0.0f});
-  cv::parallel_for_(cv::Range(0, int(s.size())), [&](const cv::Range& range) {
-    for (int k = range.start; k < range.end; ++k) {
-      const size_t i = size_t(k);
-      if (s.clusters[i] != wood) continue;
-      const glm::vec4 clip = view_proj * glm::vec4(s.positions[i], 1.0f);
-      if (!(clip.w > 0.0f)) continue;
-      const float d = -(camera.view * glm::vec4(s.positions[i], 1.0f)).z;
-      const float cx = (clip.x / clip.w * 0.5f + 0.5f) * float(size.width);
-      const float cy = (0.5f - clip.y / clip.w * 0.5f) * float(size.height);
-      const float r = std::clamp(0.6f * s.spacing * (camera.ortho ? focal : focal / d), 0.5f, 8.0f);
-      if (!std::isfinite(cx) || !std::isfinite(cy) || !(d > 0.0f)) continue;
-      discs[i] = {cx, cy, r, d};
+  std::vector<std::vector<Disc>> runs(kDiscRuns);
+  cv::parallel_for_(cv::Range(0, kDiscRuns), [&](const cv::Range& range) {
+    for (int run = range.start; run < range.end; ++run) {
+      const size_t end = s.size() * size_t(run + 1) / kDiscRuns;
+      for (size_t i = s.size() * size_t(run) / kDiscRuns; i < end; ++i) {
+        if (s.clusters[i] != wood) continue;
+        const glm::vec4 clip = view_proj * glm::vec4(s.positions[i], 1.0f);
+        if (!(clip.w > 0.0f)) continue;
+        const float d = -(camera.view * glm::vec4(s.positions[i], 1.0f)).z;
+        const float cx = (clip.x / clip.w * 0.5f + 0.5f) * float(size.width);
+        const float cy = (0.5f - clip.y / clip.w * 0.5f) * float(size.height);
+        const float r = std::clamp(0.6f * s.spacing * (camera.ortho ? focal : focal / d), 0.5f,
+                                   kMostDiscRadius);
+        if (!std::isfinite(cx) || !std::isfinite(cy) || !(d > 0.0f)) continue;
+        runs[size_t(run)].push_back({cx, cy, r, d});
+      }
     }
   });
+  std::vector<Disc> discs;
+  for (const std::vector<Disc>& run : runs)
+    discs.insert(discs.end(), run.begin(), run.end());
+  return discs;
+}
+
+// The discs that reach the frame by the row of their centre (a counting sort): discs[first[y],
+// first[y + 1]) are those centred on row y.
+struct DiscRows {
+  std::vector<Disc> discs;
+  std::vector<size_t> first;
+};
+
+DiscRows by_row(const std::vector<Disc>& discs, cv::Size size) {
+  DiscRows out;
+  out.first.assign(size_t(size.height) + 1, 0);
+  auto row_of = [&](const Disc& c) {
+    if (c.cy + c.r < 0.0f || c.cy - c.r > float(size.height) || c.cx + c.r < 0.0f ||
+        c.cx - c.r > float(size.width))
+      return -1;
+    return std::clamp(int(std::floor(c.cy)), 0, size.height - 1);
+  };
+  for (const Disc& c : discs)
+    if (const int y = row_of(c); y >= 0) ++out.first[size_t(y) + 1];
+  for (size_t y = 1; y < out.first.size(); ++y)
+    out.first[y] += out.first[y - 1];
+  std::vector<size_t> next(out.first.begin(), out.first.end() - 1);
+  out.discs.resize(out.first.back());
+  for (const Disc& c : discs)
+    if (const int y = row_of(c); y >= 0) out.discs[next[size_t(y)]++] = c;
+  return out;
+}
+
+// The wood samples splatted at the frame's resolution: each a disc of about its spacing, the
+// nearest kept; +inf where none. Splatted by bands of rows, each band visiting the discs centred
+// within a disc's largest radius of it (the nearest is the same in any order).
+cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size, uint32_t wood) {
+  const float inf = std::numeric_limits<float>::infinity();
+  cv::Mat z(size, CV_32FC1, cv::Scalar(inf));
+  const DiscRows rows = by_row(wood_discs(s, camera, size, wood), size);
   for_bands(size.height, [&](int band0, int band1) {
-    for (const Disc& c : discs) {
-      if (!(c.d > 0.0f)) continue;
+    const int reach = int(std::ceil(kMostDiscRadius)) + 1;
+    const size_t from = rows.first[size_t(std::max(0, band0 - reach))];
+    const size_t to = rows.first[size_t(std::min(size.height, band1 + reach))];
+    for (size_t i = from; i < to; ++i) {
+      const Disc& c = rows.discs[i];
       const int x0 = std::max(0, int(std::ceil(c.cx - c.r - 0.5f))),
                 x1 = std::min(size.width - 1, int(std::floor(c.cx + c.r - 0.5f)));
       const int y0 = std::max(band0, int(std::ceil(c.cy - c.r - 0.5f))),

@@ -37,10 +37,7 @@ ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranke
   t.plant = cover >= 0.5f;
   if (cv::countNonZero(t.plant) == 0) return {};
   // The plant's darkness only: divide out the paper's share of each pixel and of the blur.
-  cv::Mat weight;
-  cv::GaussianBlur(dark, t.dark, {0, 0}, std::max(0.5, sigma));
-  cv::GaussianBlur(cover, weight, {0, 0}, std::max(0.5, sigma));
-  cv::divide(t.dark, cv::max(weight, 1e-6f), t.dark);
+  t.dark = normalised_blur(dark, cover, sigma);
   if (!ranked) return t;
   for (int y = 0; y < size.height; ++y)
     for (int x = 0; x < size.width; ++x)
