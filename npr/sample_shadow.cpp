@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/error.h"
 
@@ -23,6 +24,9 @@ bool to_light(const Camera& light, int size, const glm::vec3& p, glm::vec2& at, 
   return std::isfinite(at.x) && std::isfinite(at.y) && std::isfinite(depth);
 }
 
+// The samples are splatted in this many runs (each its own map, joined by their minimum).
+constexpr int kShadowRuns = 8;
+
 }  // namespace
 
 SampleShadow sample_shadow_map(const SurfaceSamples& samples, const Sphere& sphere,
@@ -31,16 +35,28 @@ SampleShadow sample_shadow_map(const SurfaceSamples& samples, const Sphere& sphe
   SampleShadow m;
   m.light = make_light_camera(sphere, toward_light, point, size);
   const float inf = std::numeric_limits<float>::infinity();
-  m.depth = cv::Mat(size, size, CV_32FC1, cv::Scalar(inf));
-  for (size_t i = 0; i < samples.size(); ++i) {
-    glm::vec2 at;
-    float d;
-    if (!to_light(m.light, size, samples.positions[i], at, d)) continue;
-    const int x = int(std::floor(at.x)), y = int(std::floor(at.y));
-    if (x < 0 || y < 0 || x >= size || y >= size) continue;
-    float& t = m.depth.at<float>(y, x);
-    t = std::min(t, d);
-  }
+  // kShadowRuns runs of the samples splatted in parallel, each into its own map, then the
+  // nearest of them (the same map in any order).
+  std::vector<cv::Mat> runs(kShadowRuns);
+  cv::parallel_for_(cv::Range(0, kShadowRuns), [&](const cv::Range& r) {
+    for (int run = r.start; run < r.end; ++run) {
+      cv::Mat depth(size, size, CV_32FC1, cv::Scalar(inf));
+      const size_t end = samples.size() * size_t(run + 1) / kShadowRuns;
+      for (size_t i = samples.size() * size_t(run) / kShadowRuns; i < end; ++i) {
+        glm::vec2 at;
+        float d;
+        if (!to_light(m.light, size, samples.positions[i], at, d)) continue;
+        const int x = int(std::floor(at.x)), y = int(std::floor(at.y));
+        if (x < 0 || y < 0 || x >= size || y >= size) continue;
+        float& t = depth.at<float>(y, x);
+        t = std::min(t, d);
+      }
+      runs[size_t(run)] = depth;
+    }
+  });
+  m.depth = runs[0];
+  for (size_t run = 1; run < runs.size(); ++run)
+    cv::min(m.depth, runs[run], m.depth);
   // Samples are about a texel apart: the nearest of 3 x 3 closes the holes between them.
   cv::erode(m.depth, m.depth, cv::Mat());
   const float texel = 2.0f * sphere.radius / float(size);

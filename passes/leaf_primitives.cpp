@@ -221,14 +221,18 @@ void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
     for (int x = 0; x < work.width; ++x)
       if (const int f = layer.front.at<int>(y, x); f > 0) shown[size_t(f - 1)] += 1.0;
   std::vector<std::pair<float, size_t>> dark(prims.size());
+  cv::parallel_for_(cv::Range(0, int(prims.size())), [&](const cv::Range& r) {
+    for (int k = r.start; k < r.end; ++k) {
+      const size_t i = size_t(k);
+      const float colour = tone.empty() ? 0.0f : tone.dark_near(prims[i].c);
+      const float light = 1.0f - p.shadow * (1.0f - light_reaching(shadow, prims[i].world));
+      dark[i] = {1.0f - (1.0f - colour) * light, i};
+    }
+  });
   double total = 0.0;
-  for (size_t i = 0; i < prims.size(); ++i) {
-    const float colour = tone.empty() ? 0.0f : tone.dark_near(prims[i].c);
-    const float light = 1.0f - p.shadow * (1.0f - light_reaching(shadow, prims[i].world));
-    dark[i] = {1.0f - (1.0f - colour) * light, i};
+  for (size_t i = 0; i < prims.size(); ++i)
     total += shown[i];
-  }
-  std::sort(dark.begin(), dark.end());
+  sort_unit_keys(dark);
   double below = 0.0;
   for (const auto& [d, i] : dark) {
     prims[i].rank = total > 0.0 ? float((below + 0.5 * shown[i]) / total) : 0.0f;

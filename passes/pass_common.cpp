@@ -36,6 +36,26 @@ cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* st
   return out;
 }
 
+void sort_unit_keys(std::vector<std::pair<float, size_t>>& pairs) {
+  constexpr int kBins = 1 << 16;
+  const auto bin = [](float key) {
+    return key > 0.0f ? std::min(kBins - 1, int(key * float(kBins))) : 0;
+  };
+  std::vector<size_t> first(kBins + 1, 0);
+  for (const auto& p : pairs)
+    ++first[size_t(bin(p.first)) + 1];
+  for (size_t b = 1; b < first.size(); ++b)
+    first[b] += first[b - 1];
+  std::vector<std::pair<float, size_t>> out(pairs.size());
+  std::vector<size_t> next(first.begin(), first.end() - 1);
+  for (const auto& p : pairs)
+    out[next[size_t(bin(p.first))]++] = p;
+  for (size_t b = 0; b + 1 < first.size(); ++b)
+    if (first[b + 1] - first[b] > 1)
+      std::sort(out.begin() + std::ptrdiff_t(first[b]), out.begin() + std::ptrdiff_t(first[b + 1]));
+  pairs = std::move(out);
+}
+
 cv::Mat normalised_blur(const cv::Mat& weighted, const cv::Mat& weight, double sigma) {
   SYLVA_CHECK(
       weighted.type() == CV_32FC1 && weight.type() == CV_32FC1 && weighted.size() == weight.size(),

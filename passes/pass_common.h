@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <functional>
 #include <opencv2/core.hpp>
+#include <utility>
+#include <vector>
 
 namespace sylva {
 
@@ -23,6 +25,11 @@ void expect_image(const cv::Mat& m, int type, const cv::Size& size, const char* 
 // each piece's row of cv::connectedComponentsWithStats (CC_STAT_LEFT ... CC_STAT_AREA):
 // CV_8UC1, 255 on them.
 cv::Mat pieces_where(const cv::Mat& mask, const std::function<bool(const int* stats)>& pick);
+
+// The pairs (key, index) in the order std::sort gives them (by key, ties by index), sorted in
+// linear time for keys in [0, 1]: a stable counting sort on 2^16 bins of the key, then a sort
+// within each bin. Keys outside [0, 1] still sort right (their bins are clamped), only slower.
+void sort_unit_keys(std::vector<std::pair<float, size_t>>& pairs);
 
 // Normalised convolution: `weighted` (values times their weight, CV_32FC1) and `weight` (CV_32FC1,
 // the same size) each blurred (Gaussian, sigma px, at least 0.5), the first divided by the second
