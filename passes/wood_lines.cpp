@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "passes/crack_chains.h"
@@ -77,17 +80,25 @@ StrokeDrawing wood_strokes(const SeenWood& seen, const InkLineParams& lines,
   const cv::Mat& mask = seen.mask;
   const float width = float(std::max<double>(edges.min_width, lines.wood.width * scale));
   const double min_length = std::max(3.0 * scale, 1.0 * lines.detail * scale);
-  for (const Polyline& chain :
-       chain_cracks(wood_outline(mask, seen.depth, edges.depth_threshold, seen.cover))) {
-    // Short pieces thin out toward nothing rather than vanish at a length, so a piece of a
-    // branch seen through a gap fades as the gap closes from frame to frame.
-    const double share = polyline_length(chain) / min_length;
-    if (share < 0.5) continue;
-    const float w = width * float(std::min(1.0, (share - 0.5) / 0.5));
-    Polyline line = smooth_polyline(chain, std::max(1.0, scale));
-    onto_wood(line, mask, 0.5f * w);
-    d.strokes.push_back(wood_stroke(simplify_polyline(line, 0.4), w, lines.wood.tone));
-  }
+  const std::vector<Polyline> chains =
+      chain_cracks(wood_outline(mask, seen.depth, edges.depth_threshold, seen.cover));
+  // Each chain smoothed in parallel (it depends on itself alone), kept in the chains' order.
+  std::vector<std::optional<Stroke>> strokes(chains.size());
+  cv::parallel_for_(cv::Range(0, int(chains.size())), [&](const cv::Range& r) {
+    for (int i = r.start; i < r.end; ++i) {
+      const Polyline& chain = chains[size_t(i)];
+      // Short pieces thin out toward nothing rather than vanish at a length, so a piece of a
+      // branch seen through a gap fades as the gap closes from frame to frame.
+      const double share = polyline_length(chain) / min_length;
+      if (share < 0.5) continue;
+      const float w = width * float(std::min(1.0, (share - 0.5) / 0.5));
+      Polyline line = smooth_polyline(chain, std::max(1.0, scale));
+      onto_wood(line, mask, 0.5f * w);
+      strokes[size_t(i)] = wood_stroke(simplify_polyline(line, 0.4), w, lines.wood.tone);
+    }
+  });
+  for (std::optional<Stroke>& st : strokes)
+    if (st) d.strokes.push_back(std::move(*st));
   return d;
 }
 
