@@ -274,8 +274,12 @@ cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
   cv::Mat rank(layer.front.size(), CV_32FC1, cv::Scalar(0));
   const int n = cv::countNonZero(wood);
   if (n == 0) return rank;
-  cv::Mat dark = tone_darkness(color);
-  cv::resize(dark, dark, layer.front.size(), 0, 0, cv::INTER_AREA);
+  // The leaf layer's darkness when it has it (the same image), else the colour's.
+  cv::Mat dark = layer.darkness;
+  if (dark.empty()) {
+    dark = tone_darkness(color);
+    cv::resize(dark, dark, layer.front.size(), 0, 0, cv::INTER_AREA);
+  }
   const auto bin = [](float v) { return std::clamp(int(v * float(kRankBins)), 0, kRankBins - 1); };
   std::vector<int> count(kRankBins, 0);
   for (int y = 0; y < wood.rows; ++y)

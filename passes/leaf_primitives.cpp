@@ -212,6 +212,7 @@ void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
                      std::vector<Primitive>& prims, LeafLayer& layer) {
   const cv::Size work = layer.front.size();
   const ToneRank tone = tone_rank(in.color, work, sigma, false);
+  layer.darkness = tone.darkness;
   SampleShadow shadow;
   if (in.light.on && in.samples && p.shadow > 0.0f && !in.light.sphere.empty())
     shadow = sample_shadow_map(*in.samples, in.light.sphere, in.light.toward, in.light.point,

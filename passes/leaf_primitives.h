@@ -94,6 +94,9 @@ struct LeafLayer {
   // At the working resolution: the front primitive's index + 1 (kWoodFront where the raster's
   // wood is in front, 0 where nothing is), its view depth, the tone rank (0 off the plant).
   cv::Mat front, depth, rank;
+  // The colour's darkness at the working resolution, not smoothed (ToneRank::darkness; empty
+  // when the frame shows no plant): the wood's tone is ranked by it.
+  cv::Mat darkness;
   std::vector<uint32_t> clusters;    // per primitive, its leaf cluster
   std::vector<cv::Point2f> centres;  // per primitive, its centre (working px)
   std::vector<float> areas;          // per primitive, its leaves' area (scene units²)

@@ -38,6 +38,7 @@ ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranke
   if (cv::countNonZero(t.plant) == 0) return {};
   // The plant's darkness only: divide out the paper's share of each pixel and of the blur.
   t.dark = normalised_blur(dark, cover, sigma);
+  t.darkness = dark;
   if (!ranked) return t;
   for (int y = 0; y < size.height; ++y)
     for (int x = 0; x < size.width; ++x)

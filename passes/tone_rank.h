@@ -21,6 +21,8 @@ cv::Mat tone_darkness(const cv::Mat& color);
 struct ToneRank {
   cv::Mat plant;  // CV_8UC1 at the working size, 255 = on the plant (area coverage >= 1/2)
   cv::Mat dark;   // CV_32FC1 the smoothed darkness, [0, 1]
+  // CV_32FC1 the darkness area-averaged to the working size, not smoothed (0 off the plant).
+  cv::Mat darkness;
   // The plant's smoothed darkness, ascending (empty unless ranked): what a rank is taken among.
   std::vector<float> sorted;
   bool empty() const { return dark.empty(); }
