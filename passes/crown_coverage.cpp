@@ -149,22 +149,24 @@ PartMask part_mask(const Part& part, const Projector& projector, double sigma, f
 
 }  // namespace
 
-cv::Mat project_surface_density(const SurfaceSamples& samples, const Camera& camera) {
+cv::Mat project_surface_density(const SurfaceSamples& samples, const Camera& camera,
+                                uint32_t skip) {
   SYLVA_CHECK(camera.width > 0 && camera.height > 0, "project_surface_density: an empty frame");
   cv::Mat d(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
   const Projector projector(camera);
   Projected p;
   for (size_t i = 0; i < samples.size(); ++i)
-    if (projector.project(samples, i, p)) splat(d, p.x, p.y, p.area);
+    if ((skip == 0 || samples.clusters[i] != skip) && projector.project(samples, i, p))
+      splat(d, p.x, p.y, p.area);
   return d;
 }
 
 cv::Mat crown_coverage(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
-                       double sigma) {
+                       double sigma, uint32_t skip) {
   Camera sized = camera;
   sized.width = size.width;
   sized.height = size.height;
-  cv::Mat d = project_surface_density(samples, sized);
+  cv::Mat d = project_surface_density(samples, sized, skip);
   if (sigma > 0.0) cv::GaussianBlur(d, d, {0, 0}, sigma);
   cv::exp(-d, d);
   return 1.0f - d;

@@ -25,13 +25,15 @@
 
 namespace sylva {
 
-// CV_32FC1 of the camera's size.
-cv::Mat project_surface_density(const SurfaceSamples& samples, const Camera& camera);
+// CV_32FC1 of the camera's size. The samples of cluster `skip` (0 = none) are left out.
+cv::Mat project_surface_density(const SurfaceSamples& samples, const Camera& camera,
+                                uint32_t skip = 0);
 
 // The crown's coverage at `size` (the camera's frame at another resolution): the density
-// blurred by a Gaussian of `sigma` px, as 1 - exp(-density), CV_32FC1 in [0, 1].
+// blurred by a Gaussian of `sigma` px, as 1 - exp(-density), CV_32FC1 in [0, 1]; the samples of
+// cluster `skip` (0 = none: the wood's, for the leaves' coverage alone) left out.
 cv::Mat crown_coverage(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
-                       double sigma);
+                       double sigma, uint32_t skip = 0);
 
 // Each part (leaf cluster) of the crown on its own, back to front by mean view depth: where its
 // coverage 1 - exp(-density), the density of its samples alone smoothed by a Gaussian of `sigma`

@@ -27,6 +27,7 @@ namespace {
 
 using watercolor_internal::blur;
 using watercolor_internal::encode_srgb;
+using watercolor_internal::foliage_cover;
 using watercolor_internal::glaze;
 using watercolor_internal::glaze_shadow;
 using watercolor_internal::key_shadow;
@@ -48,7 +49,7 @@ using watercolor_internal::to_linear;
 // (at least 2 px), a part where its coverage reaches kPartLevel; the wood under the leaves where
 // its own reaches kWoodLevel (the trunk and the main branches, not every twig inside the crown).
 constexpr float kPartSigma = 2.0f;
-constexpr float kPartLevel = 0.3f;
+constexpr float kPartLevel = 0.15f;
 constexpr float kWoodLevel = 0.6f;
 // The wood's part is smoothed by this share of the leaves' parts' width: the trunk and its
 // branches, not one patch over the space between them.
@@ -464,6 +465,9 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   const PaperField paper(p, scale);
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
+  if (in.samples && has_projection(in))
+    s.cover = foliage_cover(*in.samples, in.camera, s.size, kPartSigma * std::max(s.sigma, 2.0f),
+                            in.wood_cluster);
   if (p.gradation > 0.0f || p.warm_cool > 0.0f)
     s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;

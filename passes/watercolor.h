@@ -6,7 +6,9 @@
 // cluster with watercolor.mass = 0, or without the scene's samples): its id mask is blurred and
 // thresholded (soft wet-on-wet or hard wet-on-dry edges), wobbled by the paper's gradient,
 // darkened along its rim where pigment pools (on the plant's outer edge and at depth steps
-// between washes, watercolor.rim_step), graded with the light inside it, tinted with the cluster's
+// between washes, watercolor.rim_step), thinned where the foliage thins (its pigment follows the
+// leaves' smoothed coverage, watercolor_layers.h kThinCover: a willow's curtain of strands is a
+// pale veil), graded with the light inside it, tinted with the cluster's
 // mean colour, given leaf detail through a blurred depth test, and glazed over the washes behind
 // it, back to front by mean depth. Glazing is subtractive: each wash is an optical density (-log2
 // of its linear transmittance) scaled by its coverage, and densities add (transmittances multiply),

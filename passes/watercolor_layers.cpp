@@ -240,6 +240,14 @@ cv::Vec3f gradation(const Shared& s, const Layer& layer, float soft_luminance, c
   return c;
 }
 
+// Where the foliage thins its wash thins with it: the pigment's share at image pixel (x, y),
+// from none where the leaves' coverage (Shared::cover) is kThinCover to all of it from
+// kFullCover; the wood's wash, and every wash without the scene's samples, keep all of it.
+float thin_wash(const Shared& s, const Layer& layer, int x, int y) {
+  if (s.cover.empty() || layer.id == s.wood) return 1.0f;
+  return smoothstep(kThinCover, kFullCover, s.cover_at(x, y));
+}
+
 // Under a nearer wash only part of what lies behind shows (kUnderStrength where it covers
 // fully): the glaze over it darkens less than two full washes, as a painter's dilute overlaps
 // do, and weakens exactly where the nearer wash lies, so their borders meet without a band of
@@ -302,8 +310,9 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
                           ? leaf_detail(s, layer, sample(small.depth, sx, sy), dep[x], lum[x])
                           : layer.pigment_display;
         if (soft) c = gradation(s, layer, s.soft_at(roi.x + x, roi.y + y), c);
+        const float a = thin_wash(s, layer, roi.x + x, roi.y + y) * alpha;
         for (int ch = 0; ch < 3; ++ch)
-          t[x][ch] = alpha * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
+          t[x][ch] = a * to_density(*s.srgb, pigment_density(std::min(c[ch], 1.0f), d));
       }
       glaze_row(into, roi.x, roi.y + y, w, t, cov);
     }

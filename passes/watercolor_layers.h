@@ -41,6 +41,13 @@ struct Layer {
   float mean_luminance = 0;       // display (sRGB-encoded) luminance
 };
 
+// A painter lays a thin wash where the foliage thins (a willow's curtain of strands, a crown's
+// ragged edge) and a full one where it is dense: a leaf wash carries none of its pigment where
+// the leaves' smoothed coverage is kThinCover (half the level at which the crown's parts begin,
+// watercolor.cpp kPartLevel) and all of it from kFullCover on, fading between (smoothstep).
+inline constexpr float kThinCover = 0.075f;
+inline constexpr float kFullCover = 0.45f;
+
 struct Shared {
   cv::Size size;
   // CV_32SC1: index of the layer (back to front), -1 background: the washes' shapes. From the
@@ -71,6 +78,15 @@ struct Shared {
     const float fx = float(soft_luminance.cols) / float(size.width);
     const float fy = float(soft_luminance.rows) / float(size.height);
     return sample(soft_luminance, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
+  }
+  // The leaves' coverage smoothed at the washes' scale (CV_32FC1 in [0, 1], at a fraction of
+  // the resolution: cover_at; watercolor_light.h foliage_cover), from the scene's samples; empty
+  // without them. A leaf wash's pigment fades in from kThinCover to kFullCover of it.
+  cv::Mat cover;
+  float cover_at(int x, int y) const {
+    const float fx = float(cover.cols) / float(size.width);
+    const float fy = float(cover.rows) / float(size.height);
+    return sample(cover, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
   }
   float gradation = 0;
   float warm_cool = 0;  // watercolor.warm_cool: the lit side warmer, the shaded side cooler

@@ -6,9 +6,14 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "passes/crown_coverage.h"
 #include "passes/pass_common.h"
 
 namespace sylva::watercolor_internal {
+
+// foliage_cover works at 1 / f of the resolution, f = sigma / (2 kCoverSigma) clamped to
+// [1, 4]: at least kCoverSigma px of smoothing there (smooth enough for bilinear up-sampling).
+constexpr float kCoverSigma = 2.5f;
 
 // The narrowest wood the watercolor paints where it is seen, px at 1024 px.
 constexpr double kSeenWoodWidth = 5.0;
@@ -85,6 +90,13 @@ cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale) {
              pieces_where(mask, [least](const int* st) { return st[cv::CC_STAT_AREA] < least; }));
   cv::GaussianBlur(mask, seen, cv::Size(0, 0), 0.7, 0.7, cv::BORDER_REPLICATE);
   return seen;
+}
+
+cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
+                      float sigma, uint32_t wood) {
+  const int f = std::clamp(int(sigma / (2.0f * kCoverSigma)), 1, 4);
+  const cv::Size small((size.width + f - 1) / f, (size.height + f - 1) / f);
+  return crown_coverage(samples, camera, small, sigma / float(f), wood);
 }
 
 }  // namespace sylva::watercolor_internal

@@ -6,6 +6,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "core/gl/camera.h"
+#include "npr/surface_samples.h"
 #include "passes/watercolor_layers.h"
 
 namespace sylva::watercolor_internal {
@@ -25,5 +27,12 @@ cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
 // = the image's size over 1024, reference_scale: the same width at every size), in pieces of at
 // least 60 px at 1024 px, softened by 0.7 px: CV_8UC1, 255 = wood.
 cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale);
+
+// Shared::cover: the leaves' coverage (passes/crown_coverage.h crown_coverage, the `wood`
+// cluster's samples left out) smoothed by a Gaussian of `sigma` px, at the resolution the
+// washes' masks are blurred at (Shared::cover_at reads it): where the foliage thins, its wash
+// thins with it (watercolor_layers.h kThinCover, kFullCover).
+cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
+                      float sigma, uint32_t wood);
 
 }  // namespace sylva::watercolor_internal

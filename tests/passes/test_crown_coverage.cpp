@@ -56,6 +56,19 @@ TEST(CrownCoverage, AFacingSquareProjectsToItsArea) {
   EXPECT_NEAR(cv::sum(project_surface_density(s, cam))[0], 0.0, 1e-6);
 }
 
+TEST(CrownCoverage, ASkippedClusterCoversNothing) {
+  // The wood's cluster left out: the leaves' coverage alone (the watercolor's thin foliage).
+  SurfaceSamples s;
+  add_rectangle(s, -0.5f, 0.0f, -1.0f, 0.5f, 0.5f, 1);
+  add_rectangle(s, 0.5f, 0.0f, -1.0f, 0.5f, 0.5f, 2);
+  const Camera cam = ortho_camera(100);
+  const double both = cv::sum(crown_coverage(s, cam, {100, 100}, 1.0))[0];
+  const double without_2 = cv::sum(crown_coverage(s, cam, {100, 100}, 1.0, 2))[0];
+  EXPECT_NEAR(without_2, 0.5 * both, 0.01 * both);
+  EXPECT_NEAR(cv::sum(project_surface_density(s, cam, 1))[0], 625.0, 1.0);
+  EXPECT_EQ(cv::countNonZero(project_surface_density(s, cam, 1)(cv::Rect(0, 0, 50, 100))), 0);
+}
+
 TEST(CrownCoverage, ASubPixelMoveMovesTheDensityASubPixel) {
   SurfaceSamples a, b;
   add_rectangle(a, 0.0f, 0.0f, -1.0f, 0.5f, 0.5f, 1, 0.037f);
