@@ -44,6 +44,18 @@ struct LeafPieces {
   // and leaf cards under a twentieth.
   float leaf_extent = 0.0f;
   size_t size() const { return pieces.size(); }
+  // The pieces merged into clumps at one clump size (passes/leaf_primitives.cpp), kept for the
+  // next frame that asks for the same size (a turntable's frames share it): the last size's
+  // only. A copy of the pieces starts without.
+  struct ClumpMemo {
+    std::mutex mutex;
+    double size = 0.0;
+    std::shared_ptr<const std::vector<LeafPiece>> clumps;
+    ClumpMemo() = default;
+    ClumpMemo(const ClumpMemo&) {}
+    ClumpMemo& operator=(const ClumpMemo&) { return *this; }
+  };
+  mutable ClumpMemo clump_memo;
 };
 
 // The share of the foliage's diagonal one cell spans (an element larger than one is cut).

@@ -112,9 +112,12 @@ cv::Mat make_paper(const cv::Size& size, const PaperParams& p) {
 ImageHandle add_paper_pass(RenderGraph& g, ImageHandle size_of, const PaperParams& p) {
   check_paper(p);
   const auto out = g.resource<cv::Mat>("paper");
-  g.add_pass("paper", {size_of}, {out}, [p, size_of, out](PassContext& ctx) {
-    ctx.write(out, make_paper(ctx.read<cv::Mat>(size_of).size(), p));
-  });
+  g.add_pass(
+      "paper", {size_of}, {out},
+      [p, size_of, out](PassContext& ctx) {
+        ctx.write(out, make_paper(ctx.read<cv::Mat>(size_of).size(), p));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 
@@ -190,7 +193,8 @@ ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandl
       [lines, coverage_or_color, paper, out, p](PassContext& ctx) {
         ctx.write(out, composite_ink(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(coverage_or_color),
                                      ctx.read<cv::Mat>(paper), p));
-      });
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 
@@ -224,10 +228,12 @@ ImageHandle add_lines_over_pass(RenderGraph& g, ImageHandle lines, ImageHandle p
                                 const glm::vec3& line_color) {
   const auto out = g.resource<cv::Mat>("lines-over");
   g.add_pass(
-      "lines-over", {lines, picture}, {out}, [lines, picture, out, line_color](PassContext& ctx) {
+      "lines-over", {lines, picture}, {out},
+      [lines, picture, out, line_color](PassContext& ctx) {
         ctx.write(out,
                   lines_over(ctx.read<cv::Mat>(lines), ctx.read<cv::Mat>(picture), line_color));
-      });
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

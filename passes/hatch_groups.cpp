@@ -347,11 +347,14 @@ Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> la
   // Only the crown's clumps read the normals (the raster then leaves them out for `ink`).
   std::vector<ResourceRef> reads{layer, color};
   if (what.foliage) reads.push_back(normal);
-  g.add_pass("hatching", reads, {out}, [=](PassContext& ctx) {
-    const cv::Mat normals = what.foliage ? ctx.read<cv::Mat>(normal) : cv::Mat();
-    ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), normals, ctx.read<cv::Mat>(color), p,
-                                detail, what));
-  });
+  g.add_pass(
+      "hatching", reads, {out},
+      [=](PassContext& ctx) {
+        const cv::Mat normals = what.foliage ? ctx.read<cv::Mat>(normal) : cv::Mat();
+        ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), normals, ctx.read<cv::Mat>(color),
+                                    p, detail, what));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

@@ -416,15 +416,18 @@ Handle<StrokeDrawing> add_tone_pass(RenderGraph& g, const ToneResources& in, con
   if (in.id.valid()) reads.push_back(in.id);
   if (in.samples.valid()) reads.push_back(in.samples);
   const auto out = g.resource<StrokeDrawing>("tone-strokes");
-  g.add_pass("tone-strokes", reads, {out}, [=](PassContext& ctx) {
-    ToneImages images;
-    images.position = ctx.read<cv::Mat>(in.position);
-    images.color = ctx.read<cv::Mat>(in.color);
-    if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
-    if (in.samples.valid())
-      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
-    ctx.write(out, tone_strokes(images, view, p, detail));
-  });
+  g.add_pass(
+      "tone-strokes", reads, {out},
+      [=](PassContext& ctx) {
+        ToneImages images;
+        images.position = ctx.read<cv::Mat>(in.position);
+        images.color = ctx.read<cv::Mat>(in.color);
+        if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
+        if (in.samples.valid())
+          images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+        ctx.write(out, tone_strokes(images, view, p, detail));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

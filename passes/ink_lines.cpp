@@ -208,20 +208,23 @@ Handle<StrokeDrawing> add_ink_lines_pass(RenderGraph& g, const InkLineResources&
   if (in.id.valid()) reads.push_back(in.id);
   if (in.samples.valid()) reads.push_back(in.samples);
   const auto out = g.resource<StrokeDrawing>("ink-strokes");
-  g.add_pass("ink-strokes", reads, {out}, [=](PassContext& ctx) {
-    InkLineImages images;
-    images.color = ctx.read<cv::Mat>(in.color);
-    images.depth = ctx.read<cv::Mat>(in.depth);
-    if (normals) images.normal = ctx.read<cv::Mat>(in.normal);
-    if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
-    if (in.samples.valid()) {
-      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
-      images.camera = in.camera;
-    }
-    EdgeParams e = edges;
-    e.normal = normals;
-    ctx.write(out, ink_line_strokes(images, e, p, branch_cluster));
-  });
+  g.add_pass(
+      "ink-strokes", reads, {out},
+      [=](PassContext& ctx) {
+        InkLineImages images;
+        images.color = ctx.read<cv::Mat>(in.color);
+        images.depth = ctx.read<cv::Mat>(in.depth);
+        if (normals) images.normal = ctx.read<cv::Mat>(in.normal);
+        if (in.id.valid()) images.id = ctx.read<cv::Mat>(in.id);
+        if (in.samples.valid()) {
+          images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+          images.camera = in.camera;
+        }
+        EdgeParams e = edges;
+        e.normal = normals;
+        ctx.write(out, ink_line_strokes(images, e, p, branch_cluster));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 
@@ -229,21 +232,81 @@ Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawin
                                              Handle<StrokeDrawing> second,
                                              const std::string& name) {
   const auto out = g.resource<StrokeDrawing>(name);
-  g.add_pass(name, {first, second}, {out}, [=](PassContext& ctx) {
-    StrokeDrawing d = ctx.read<StrokeDrawing>(first);
-    const StrokeDrawing& b = ctx.read<StrokeDrawing>(second);
-    d.color = b.color;
-    append_strokes(d, b);
-    ctx.write(out, std::move(d));
-  });
+  g.add_pass(
+      name, {first, second}, {out},
+      [=](PassContext& ctx) {
+        StrokeDrawing d = ctx.read<StrokeDrawing>(first);
+        const StrokeDrawing& b = ctx.read<StrokeDrawing>(second);
+        d.color = b.color;
+        append_strokes(d, b);
+        ctx.write(out, std::move(d));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 
 ImageHandle add_stroke_raster_pass(RenderGraph& g, Handle<StrokeDrawing> strokes) {
   const auto out = g.resource<cv::Mat>("lines");
-  g.add_pass("stroke-raster", {strokes}, {out}, [=](PassContext& ctx) {
-    ctx.write(out, rasterize_strokes(ctx.read<StrokeDrawing>(strokes)));
+  g.add_pass(
+      "stroke-raster", {strokes}, {out},
+      [=](PassContext& ctx) {
+        ctx.write(out, rasterize_strokes(ctx.read<StrokeDrawing>(strokes)));
+      },
+      RenderGraph::Threads::Any);
+  return out;
+}
+
+namespace {
+
+// 1 - the product of each coverage's 1 - coverage (CV_32FC1, one size).
+cv::Mat union_coverage(const std::vector<const cv::Mat*>& parts) {
+  cv::Mat out(parts.front()->size(), CV_32FC1);
+  for_bands(out.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      float* o = out.ptr<float>(y);
+      std::fill(o, o + out.cols, 1.0f);
+      for (const cv::Mat* m : parts) {
+        const float* c = m->ptr<float>(y);
+        for (int x = 0; x < out.cols; ++x)
+          o[x] *= 1.0f - c[x];
+      }
+      for (int x = 0; x < out.cols; ++x)
+        o[x] = 1.0f - o[x];
+    }
   });
+  return out;
+}
+
+}  // namespace
+
+ImageHandle add_stroke_parts_raster_pass(RenderGraph& g, const std::vector<StrokePart>& parts) {
+  std::vector<StrokePart> valid;
+  for (const StrokePart& part : parts)
+    if (part.strokes.valid()) valid.push_back(part);
+  SYLVA_CHECK(!valid.empty(), "add_stroke_parts_raster_pass: no drawing");
+  if (valid.size() == 1) return add_stroke_raster_pass(g, valid.front().strokes);
+  std::vector<ImageHandle> coverage;
+  for (const StrokePart& part : valid) {
+    const auto out = g.resource<cv::Mat>("lines-" + part.name);
+    const Handle<StrokeDrawing> strokes = part.strokes;
+    g.add_pass(
+        "stroke-raster-" + part.name, {strokes}, {out},
+        [=](PassContext& ctx) {
+          ctx.write(out, rasterize_strokes(ctx.read<StrokeDrawing>(strokes)));
+        },
+        RenderGraph::Threads::Any);
+    coverage.push_back(out);
+  }
+  const auto out = g.resource<cv::Mat>("lines");
+  g.add_pass(
+      "stroke-union", std::vector<ResourceRef>(coverage.begin(), coverage.end()), {out},
+      [=](PassContext& ctx) {
+        std::vector<const cv::Mat*> images;
+        for (const ImageHandle& c : coverage)
+          images.push_back(&ctx.read<cv::Mat>(c));
+        ctx.write(out, union_coverage(images));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

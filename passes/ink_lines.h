@@ -133,4 +133,17 @@ Handle<StrokeDrawing> add_merge_strokes_pass(RenderGraph& g, Handle<StrokeDrawin
 // coverage (CV_32FC1 in [0, 1], core/stroke_render.h).
 ImageHandle add_stroke_raster_pass(RenderGraph& g, Handle<StrokeDrawing> strokes);
 
+// The lines of a drawing made of parts (the foliage's, the wood's, the hatching's, ...; invalid
+// handles skipped), each part rasterised in its own pass "stroke-raster-NAME" (coverage
+// "lines-NAME") as soon as it is drawn, beside the passes still drawing the others, and joined by
+// the pass "stroke-union" into "lines": 1 - the product of each part's 1 - coverage, which is
+// what drawing every stroke on one surface gives (cairo rounds to 8 bits after each stroke, the
+// join does not: they differ by a level at most here and there). One valid part:
+// add_stroke_raster_pass.
+struct StrokePart {
+  std::string name;
+  Handle<StrokeDrawing> strokes;
+};
+ImageHandle add_stroke_parts_raster_pass(RenderGraph& g, const std::vector<StrokePart>& parts);
+
 }  // namespace sylva

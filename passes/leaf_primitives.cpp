@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 #include <tuple>
@@ -184,13 +186,25 @@ std::vector<LeafPiece> clumps(const LeafPieces& pieces, double cell) {
   return out;
 }
 
+// clumps(pieces, cell), made once per cell size (LeafPieces::clump_memo).
+std::shared_ptr<const std::vector<LeafPiece>> kept_clumps(const LeafPieces& pieces, double cell) {
+  LeafPieces::ClumpMemo& memo = pieces.clump_memo;
+  const std::lock_guard<std::mutex> lock(memo.mutex);
+  if (!memo.clumps || memo.size != cell) {
+    memo.clumps = std::make_shared<const std::vector<LeafPiece>>(clumps(pieces, cell));
+    memo.size = cell;
+  }
+  return memo.clumps;
+}
+
 std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& p, double f,
                                         float least, double cell) {
   std::vector<Primitive> prims;
   if (!in.pieces) return prims;
   const glm::mat4 view_proj = in.camera.proj * in.camera.view;
   const float h = std::max(1e-6f, 0.05f * in.pieces->cell);
-  const std::vector<LeafPiece> merged = clumps(*in.pieces, cell);
+  const std::shared_ptr<const std::vector<LeafPiece>> kept = kept_clumps(*in.pieces, cell);
+  const std::vector<LeafPiece>& merged = *kept;
   std::vector<Primitive> all(merged.size());
   std::vector<uint8_t> made(merged.size(), 0);
   cv::parallel_for_(cv::Range(0, int(merged.size())), [&](const cv::Range& r) {
@@ -356,26 +370,31 @@ Handle<LeafLayer> add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, c
   if (in.wood.valid()) reads.push_back(in.wood);
   if (in.samples.valid()) reads.push_back(in.samples);
   const auto out = g.resource<LeafLayer>("leaf-layer");
-  g.add_pass("leaf-layer", reads, {out}, [=](PassContext& ctx) {
-    LeafImages images;
-    images.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(in.pieces);
-    images.camera = in.camera;
-    images.units_per_px = in.units_per_px;
-    images.color = ctx.read<cv::Mat>(in.color);
-    images.depth = ctx.read<cv::Mat>(in.depth);
-    if (in.wood.valid()) images.wood = ctx.read<SeenWood>(in.wood);
-    if (in.samples.valid())
-      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
-    images.light = in.light;
-    ctx.write(out, leaf_layer(images, p, lines, edges));
-  });
+  g.add_pass(
+      "leaf-layer", reads, {out},
+      [=](PassContext& ctx) {
+        LeafImages images;
+        images.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(in.pieces);
+        images.camera = in.camera;
+        images.units_per_px = in.units_per_px;
+        images.color = ctx.read<cv::Mat>(in.color);
+        images.depth = ctx.read<cv::Mat>(in.depth);
+        if (in.wood.valid()) images.wood = ctx.read<SeenWood>(in.wood);
+        if (in.samples.valid())
+          images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+        images.light = in.light;
+        ctx.write(out, leaf_layer(images, p, lines, edges));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 
 Handle<StrokeDrawing> add_leaf_strokes_pass(RenderGraph& g, Handle<LeafLayer> layer) {
   const auto out = g.resource<StrokeDrawing>("leaf-strokes");
-  g.add_pass("leaf-strokes", {layer}, {out},
-             [=](PassContext& ctx) { ctx.write(out, ctx.read<LeafLayer>(layer).drawing); });
+  g.add_pass(
+      "leaf-strokes", {layer}, {out},
+      [=](PassContext& ctx) { ctx.write(out, ctx.read<LeafLayer>(layer).drawing); },
+      RenderGraph::Threads::Any);
   return out;
 }
 

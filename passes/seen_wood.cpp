@@ -176,15 +176,18 @@ Handle<SeenWood> add_seen_wood_pass(RenderGraph& g, const WoodResources& in, uin
   std::vector<ResourceRef> reads = {in.id, in.depth};
   if (in.samples.valid()) reads.push_back(in.samples);
   const auto out = g.resource<SeenWood>("seen-wood");
-  g.add_pass("seen-wood", reads, {out}, [=](PassContext& ctx) {
-    WoodImages images;
-    images.id = ctx.read<cv::Mat>(in.id);
-    images.depth = ctx.read<cv::Mat>(in.depth);
-    if (in.samples.valid())
-      images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
-    images.camera = in.camera;
-    ctx.write(out, seen_wood(images, wood, detail));
-  });
+  g.add_pass(
+      "seen-wood", reads, {out},
+      [=](PassContext& ctx) {
+        WoodImages images;
+        images.id = ctx.read<cv::Mat>(in.id);
+        images.depth = ctx.read<cv::Mat>(in.depth);
+        if (in.samples.valid())
+          images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+        images.camera = in.camera;
+        ctx.write(out, seen_wood(images, wood, detail));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

@@ -88,9 +88,10 @@ StrokeDrawing wood_strokes(const SeenWood& seen, const InkLineParams& lines,
     for (int i = r.start; i < r.end; ++i) {
       const Polyline& chain = chains[size_t(i)];
       // Short pieces thin out toward nothing rather than vanish at a length, so a piece of a
-      // branch seen through a gap fades as the gap closes from frame to frame.
+      // branch seen through a gap fades as the gap closes from frame to frame (at half the
+      // length it has no width: no stroke).
       const double share = polyline_length(chain) / min_length;
-      if (share < 0.5) continue;
+      if (share <= 0.5) continue;
       const float w = width * float(std::min(1.0, (share - 0.5) / 0.5));
       Polyline line = smooth_polyline(chain, std::max(1.0, scale));
       onto_wood(line, mask, 0.5f * w);
@@ -105,9 +106,12 @@ StrokeDrawing wood_strokes(const SeenWood& seen, const InkLineParams& lines,
 Handle<StrokeDrawing> add_wood_lines_pass(RenderGraph& g, Handle<SeenWood> wood,
                                           const InkLineParams& lines, const EdgeParams& edges) {
   const auto out = g.resource<StrokeDrawing>("wood-strokes");
-  g.add_pass("wood-strokes", {wood}, {out}, [=](PassContext& ctx) {
-    ctx.write(out, wood_strokes(ctx.read<SeenWood>(wood), lines, edges));
-  });
+  g.add_pass(
+      "wood-strokes", {wood}, {out},
+      [=](PassContext& ctx) {
+        ctx.write(out, wood_strokes(ctx.read<SeenWood>(wood), lines, edges));
+      },
+      RenderGraph::Threads::Any);
   return out;
 }
 

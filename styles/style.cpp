@@ -100,6 +100,8 @@ Handle<StrokeDrawing> over(RenderGraph& graph, Handle<StrokeDrawing> a, Handle<S
 struct LineDrawing {
   Handle<StrokeDrawing> strokes;
   Handle<LeafLayer> leaves;  // none without foliage primitives
+  // What `strokes` is made of, rasterised part by part (add_stroke_parts_raster_pass).
+  std::vector<StrokePart> parts;
 };
 
 // The line drawing: the foliage primitives (passes/leaf_primitives.h) and the wood drawn where
@@ -121,7 +123,7 @@ LineDrawing add_line_drawing(RenderGraph& graph, const GBufferHandles& gbuffer,
     r.camera = context.camera;
     strokes = add_ink_lines_pass(graph, r, params.edges, rest, context.branch_cluster);
   }
-  if (lines.outline) return {strokes, {}};
+  if (lines.outline) return {strokes, {}, {{"other", strokes}}};
   WoodResources wr;
   wr.id = gbuffer.id;
   wr.depth = gbuffer.depth;
@@ -146,7 +148,8 @@ LineDrawing add_line_drawing(RenderGraph& graph, const GBufferHandles& gbuffer,
   const Handle<StrokeDrawing> wood = add_wood_lines_pass(graph, seen, lines, params.edges);
   // The leaves under the wood, the other lines over both.
   return {over(graph, over(graph, leaves, wood, "leaves-and-wood"), strokes, "line-drawing"),
-          layer};
+          layer,
+          {{"leaves", leaves}, {"wood", wood}, {"other", strokes}}};
 }
 
 }  // namespace
@@ -155,6 +158,7 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
                       const StyleContext& context) {
   const LineDrawing drawing = add_line_drawing(graph, gbuffer, params, context);
   Handle<StrokeDrawing> strokes = drawing.strokes;
+  std::vector<StrokePart> parts = drawing.parts;
   const bool hatch = params.pen.tone == PenTone::Hatching;
   if (drawing.leaves.valid() && (hatch || params.lines.wood_shade)) {
     validate_pen_params(params.pen);
@@ -163,6 +167,7 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
         graph, drawing.leaves, gbuffer.normal, gbuffer.color, params.pen, params.lines.detail,
         {.foliage = hatch, .wood = params.lines.wood_shade});
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
+    parts.push_back({"tone", tone});
   } else if (params.pen.enabled()) {
     validate_pen_params(params.pen);
     ToneResources t;
@@ -178,8 +183,10 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
     const Handle<StrokeDrawing> tone =
         add_tone_pass(graph, t, view, params.pen, params.lines.detail);
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
+    parts.push_back({"tone", tone});
   }
-  const ImageHandle lines = add_stroke_raster_pass(graph, strokes);
+  // Each part rasterised as soon as it is drawn: the same coverage as `strokes` rasterised.
+  const ImageHandle lines = add_stroke_parts_raster_pass(graph, parts);
   InkParams ink = params.ink;
   ink.line_color = params.edges.color;
   // The colour target is drawn on a transparent clear for ink (Style::configure), so its

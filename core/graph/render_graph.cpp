@@ -1,6 +1,11 @@
 #include "core/graph/render_graph.h"
 
 #include <algorithm>
+#include <condition_variable>
+#include <deque>
+#include <future>
+#include <mutex>
+#include <set>
 #include <sstream>
 
 #include "core/interrupt.h"
@@ -85,7 +90,7 @@ std::vector<int> RenderGraph::ids(const std::vector<ResourceRef>& refs) const {
 }
 
 int RenderGraph::add_pass(const std::string& local_name, std::vector<ResourceRef> read_refs,
-                          std::vector<ResourceRef> write_refs, Run run) {
+                          std::vector<ResourceRef> write_refs, Run run, Threads threads) {
   const std::string name = m_scope + local_name;
   SYLVA_CHECK(!has_pass(name), "render graph: duplicate pass '" + name + "'");
   std::vector<int> reads = ids(read_refs), writes = ids(write_refs);
@@ -100,7 +105,7 @@ int RenderGraph::add_pass(const std::string& local_name, std::vector<ResourceRef
                 "resource '" + m_resources[w].name + "' written by two passes");
     m_resources[w].writer = id;
   }
-  m_passes.push_back(Pass{name, std::move(reads), std::move(writes), std::move(run)});
+  m_passes.push_back(Pass{name, std::move(reads), std::move(writes), std::move(run), threads});
   m_compiled = false;
   return id;
 }
@@ -134,25 +139,127 @@ void RenderGraph::compile() {
   m_compiled = true;
 }
 
+void RenderGraph::run_pass(int pass) {
+  PassContext ctx(*this, pass);
+  m_passes[size_t(pass)].run(ctx);
+}
+
+void RenderGraph::finish_pass(int p, const std::function<void(const std::string&)>& after_pass) {
+  const Pass& pass = m_passes[size_t(p)];
+  for (int w : pass.writes) {
+    SYLVA_CHECK(!m_resources[w].live || m_resources[w].value.has_value(),
+                "pass '" + pass.name + "' did not write '" + m_resources[w].name + "'");
+    if (m_observer && m_resources[w].live) m_observer(m_resources[w].name, m_resources[w].value);
+  }
+  // Release inputs after their last reader, unless they are outputs.
+  for (int r : pass.reads) {
+    Resource& res = m_resources[r];
+    if (--res.pending_reads == 0 && !res.presented) res.value.reset();
+  }
+  if (after_pass) after_pass(pass.name);
+}
+
+namespace {
+
+// Threads::Any passes running at once: a frame's image passes are each parallel inside, so two
+// fill the cores where one alone leaves them idle between its parallel loops.
+constexpr size_t kMostInFlight = 2;
+
+struct InFlight {
+  int pass;
+  std::future<void> done;
+};
+
+// The passes in flight that have ended, in the order they did.
+class Landings {
+ public:
+  void land(int pass) {
+    {
+      const std::lock_guard<std::mutex> lock(m_mutex);
+      m_ended.push_back(pass);
+    }
+    m_ended_one.notify_one();
+  }
+  int wait() {
+    std::unique_lock<std::mutex> lock(m_mutex);
+    m_ended_one.wait(lock, [this] { return !m_ended.empty(); });
+    const int pass = m_ended.front();
+    m_ended.pop_front();
+    return pass;
+  }
+
+ private:
+  std::mutex m_mutex;
+  std::condition_variable m_ended_one;
+  std::deque<int> m_ended;
+};
+
+// Tells `landings` that `pass` ended, however it ends.
+struct Landed {
+  Landings& landings;
+  int pass;
+  ~Landed() { landings.land(pass); }
+};
+
+}  // namespace
+
 void RenderGraph::execute(const std::function<void(const std::string&)>& after_pass) {
   if (!m_compiled) compile();
+  // How many unfinished passes write what each pass reads; the passes that read each one's.
+  std::vector<int> waiting(m_passes.size(), 0);
+  std::vector<std::vector<int>> feeds(m_passes.size());
+  std::set<int> ready;
+  size_t left = 0;
   for (size_t p = 0; p < m_passes.size(); ++p) {
-    Pass& pass = m_passes[p];
-    if (!pass.live) continue;
+    if (!m_passes[p].live) continue;
+    ++left;
+    std::set<int> writers;
+    for (int r : m_passes[p].reads)
+      writers.insert(m_resources[r].writer);
+    for (int w : writers)
+      feeds[size_t(w)].push_back(int(p));
+    waiting[p] = int(writers.size());
+    if (writers.empty()) ready.insert(int(p));
+  }
+  auto finished = [&](int p) {
+    finish_pass(p, after_pass);
+    for (int q : feeds[size_t(p)])
+      if (--waiting[size_t(q)] == 0) ready.insert(q);
+    --left;
+  };
+  Landings landings;  // outlives `flying`, whose futures wait for their passes when destroyed
+  std::vector<InFlight> flying;
+  while (left > 0) {
     check_interrupt();  // a long render stops between passes after SIGINT (core/interrupt.h)
-    PassContext ctx(*this, static_cast<int>(p));
-    pass.run(ctx);
-    for (int w : pass.writes) {
-      SYLVA_CHECK(!m_resources[w].live || m_resources[w].value.has_value(),
-                  "pass '" + pass.name + "' did not write '" + m_resources[w].name + "'");
-      if (m_observer && m_resources[w].live) m_observer(m_resources[w].name, m_resources[w].value);
+    // The first ready pass that can start: one for the calling thread at once (beside the
+    // passes in flight, which only read what it cannot change), one for any thread while fewer
+    // than kMostInFlight are in flight.
+    const auto next = std::find_if(ready.begin(), ready.end(), [&](int p) {
+      return m_passes[size_t(p)].threads == Threads::Main || flying.size() < kMostInFlight;
+    });
+    if (next != ready.end()) {
+      const int pass = *next;
+      ready.erase(next);
+      if (m_passes[size_t(pass)].threads == Threads::Any) {
+        flying.push_back({pass, std::async(std::launch::async, [this, pass, &landings] {
+                            const Landed landed{landings, pass};
+                            run_pass(pass);
+                          })});
+      } else {
+        run_pass(pass);
+        finished(pass);
+      }
+      continue;
     }
-    // Release inputs after their last reader, unless they are outputs.
-    for (int r : pass.reads) {
-      Resource& res = m_resources[r];
-      if (--res.pending_reads == 0 && !res.presented) res.value.reset();
-    }
-    if (after_pass) after_pass(pass.name);
+    SYLVA_CHECK(!flying.empty(), "render graph: no pass can run");
+    // The first pass in flight to end (its exception, if any, thrown here).
+    const int ended = landings.wait();
+    const auto it = std::find_if(flying.begin(), flying.end(),
+                                 [ended](const InFlight& f) { return f.pass == ended; });
+    InFlight landed = std::move(*it);
+    flying.erase(it);
+    landed.done.get();
+    finished(ended);
   }
 }
 

@@ -81,14 +81,24 @@ class RenderGraph {
   Handle<T> resource(const std::string& name) {
     return Handle<T>{declare(name, typeid(T))};
   }
+  // Where a pass may run. Main: on the calling thread (a pass that draws with the GL context,
+  // or changes anything but its outputs). Any: on a worker thread, beside other passes whose
+  // results it does not need; such a pass reads only its inputs and what nothing changes while
+  // the graph runs (the scene), and locks what it shares (a memo): an image pass, say. So a
+  // frame's independent passes share the cores.
+  enum class Threads { Main, Any };
   // The pass is named scope() + name. Every handle must be valid and of its resource's type.
   int add_pass(const std::string& name, std::vector<ResourceRef> reads,
-               std::vector<ResourceRef> writes, Run run);
+               std::vector<ResourceRef> writes, Run run, Threads threads = Threads::Main);
   void present(ResourceRef resource);
 
   void compile();
   // after_pass (optional) is called with each live pass's full name once it has run, e.g.
-  // to report progress over live_passes().
+  // to report progress over live_passes(). A pass runs once every pass writing what it reads
+  // has run: the Threads::Main passes one at a time on the calling thread, up to two
+  // Threads::Any passes beside them, in an order that can differ from the order they were
+  // added in. The values are those of running the passes one by one in order. A pass's
+  // exception is thrown here once the passes running beside it have ended.
   void execute(const std::function<void(const std::string&)>& after_pass = {});
 
   bool compiled() const { return m_compiled; }
@@ -142,8 +152,13 @@ class RenderGraph {
     std::string name;
     std::vector<int> reads, writes;
     Run run;
+    Threads threads = Threads::Main;
     bool live = false;
   };
+  void run_pass(int pass);
+  // What execute() does once `pass` has run: checks its outputs, shows them to the observer,
+  // frees the inputs it read last, and tells after_pass.
+  void finish_pass(int pass, const std::function<void(const std::string&)>& after_pass);
   std::vector<Resource> m_resources;
   std::vector<Pass> m_passes;
   bool m_compiled = false;

@@ -132,17 +132,25 @@ TEST(WatercolorCli, AMassIsNotCutOffByItsBox) {
   EXPECT_LT(longest_straight_edge(cv::imread(out, cv::IMREAD_COLOR)), 40);
 }
 
+// A disc of radius r px (rounded, at least 1) for the morphology below.
+cv::Mat disc(double r) {
+  const int k = 2 * std::max(1, int(std::lround(r))) + 1;
+  return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
+}
+
+// The plant: the standard render's alpha (CV_8UC1, 255 = plant).
+cv::Mat plant_of(const cv::Mat& standard) {
+  cv::Mat plant;
+  cv::extractChannel(standard, plant, 3);
+  return plant > 0;
+}
+
 // The share of the plant's area (the standard render's alpha) that the picture paints beyond
 // the plant closed and grown by 1 % of the size (../shared/tools/depiction.py's overreach).
 double overreach(const cv::Mat& standard, const cv::Mat& picture) {
   const int size = picture.cols;
-  auto disc = [](double r) {
-    const int k = 2 * std::max(1, int(std::lround(r))) + 1;
-    return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
-  };
-  cv::Mat plant, grown, painted;
-  cv::extractChannel(standard, plant, 3);
-  plant = plant > 0;
+  const cv::Mat plant = plant_of(standard);
+  cv::Mat grown, painted;
   cv::morphologyEx(plant, grown, cv::MORPH_CLOSE, disc(0.01 * size));
   cv::dilate(grown, grown, disc(0.01 * size));
   const cv::Mat paper(picture.size(), CV_8UC3, picture.at<cv::Vec3b>(2, 2));
@@ -175,13 +183,8 @@ TEST(WatercolorCli, AFernIsPaintedFrondByFrond) {
 // eroded by 3 %) that is a thin dark rim: ../shared/tools/depiction.py's rims.
 double interior_rims(const cv::Mat& standard, const cv::Mat& picture) {
   const int size = picture.cols;
-  auto disc = [](double r) {
-    const int k = 2 * std::max(1, int(std::lround(r))) + 1;
-    return cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k});
-  };
   cv::Mat plant, grey, blurred;
-  cv::extractChannel(standard, plant, 3);
-  cv::morphologyEx(plant > 0, plant, cv::MORPH_CLOSE, disc(0.01 * size));
+  cv::morphologyEx(plant_of(standard), plant, cv::MORPH_CLOSE, disc(0.01 * size));
   cv::erode(plant, plant, disc(0.03 * size));
   cv::cvtColor(picture, grey, cv::COLOR_BGR2GRAY);
   grey.convertTo(grey, CV_32F);
