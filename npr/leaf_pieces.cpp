@@ -166,13 +166,10 @@ LeafPiecesHandle add_leaf_pieces_pass(RenderGraph& graph, SamplesHandle samples,
                                       std::shared_ptr<LeafPieceMemo> memo) {
   SYLVA_CHECK(samples.valid(), "leaf pieces need the surface samples");
   const auto out = graph.resource<std::shared_ptr<const LeafPieces>>("leaf-pieces");
-  graph.add_pass(
-      "leaf-pieces", {samples}, {out},
-      [=](PassContext& ctx) {
-        ctx.write(out, memo_pieces(ctx.read<std::shared_ptr<const SurfaceSamples>>(samples), wood,
-                                   memo.get()));
-      },
-      RenderGraph::Threads::Any);
+  graph.add_pass("leaf-pieces", {samples}, {out}, [=](PassContext& ctx) {
+    ctx.write(out, memo_pieces(ctx.read<std::shared_ptr<const SurfaceSamples>>(samples), wood,
+                               memo.get()));
+  });
   return out;
 }
 

@@ -190,12 +190,9 @@ SamplesHandle add_surface_samples_pass(RenderGraph& graph, const Scene* scene,
                                        std::shared_ptr<SurfaceSampleMemo> memo) {
   SYLVA_CHECK(scene != nullptr, "surface samples need a scene");
   const auto out = graph.resource<std::shared_ptr<const SurfaceSamples>>("surface-samples");
-  graph.add_pass(
-      "surface-samples", {}, {out},
-      [out, scene, memo](PassContext& ctx) {
-        ctx.write(out, coverage_samples(*scene, memo.get()));
-      },
-      RenderGraph::Threads::Any);
+  graph.add_pass("surface-samples", {}, {out}, [out, scene, memo](PassContext& ctx) {
+    ctx.write(out, coverage_samples(*scene, memo.get()));
+  });
   return out;
 }
 
