@@ -203,43 +203,58 @@ struct Landed {
 
 }  // namespace
 
-void RenderGraph::execute(const std::function<void(const std::string&)>& after_pass) {
-  if (!m_compiled) compile();
-  // How many unfinished passes write what each pass reads; the passes that read each one's.
-  std::vector<int> waiting(m_passes.size(), 0);
-  std::vector<std::vector<int>> feeds(m_passes.size());
+// Which live passes can run: how many unfinished passes write what each one reads, and the
+// passes that read each one's outputs.
+struct RenderGraph::Schedule {
+  std::vector<int> waiting;
+  std::vector<std::vector<int>> feeds;
   std::set<int> ready;
-  size_t left = 0;
+  size_t left = 0;  // live passes not finished
+  void finished(int pass) {
+    for (int q : feeds[size_t(pass)])
+      if (--waiting[size_t(q)] == 0) ready.insert(q);
+    --left;
+  }
+};
+
+RenderGraph::Schedule RenderGraph::schedule() const {
+  Schedule s;
+  s.waiting.assign(m_passes.size(), 0);
+  s.feeds.resize(m_passes.size());
   for (size_t p = 0; p < m_passes.size(); ++p) {
     if (!m_passes[p].live) continue;
-    ++left;
+    ++s.left;
     std::set<int> writers;
     for (int r : m_passes[p].reads)
       writers.insert(m_resources[r].writer);
     for (int w : writers)
-      feeds[size_t(w)].push_back(int(p));
-    waiting[p] = int(writers.size());
-    if (writers.empty()) ready.insert(int(p));
+      s.feeds[size_t(w)].push_back(int(p));
+    s.waiting[p] = int(writers.size());
+    if (writers.empty()) s.ready.insert(int(p));
   }
+  return s;
+}
+
+void RenderGraph::execute(const std::function<void(const std::string&)>& after_pass) {
+  if (!m_compiled) compile();
+  Schedule s = schedule();
   auto finished = [&](int p) {
     finish_pass(p, after_pass);
-    for (int q : feeds[size_t(p)])
-      if (--waiting[size_t(q)] == 0) ready.insert(q);
-    --left;
+    s.finished(p);
   };
   Landings landings;  // outlives `flying`, whose futures wait for their passes when destroyed
   std::vector<InFlight> flying;
-  while (left > 0) {
+  while (s.left > 0) {
     check_interrupt();  // a long render stops between passes after SIGINT (core/interrupt.h)
     // The first ready pass that can start: one for the calling thread at once (beside the
     // passes in flight, which only read what it cannot change), one for any thread while fewer
     // than kMostInFlight are in flight.
-    const auto next = std::find_if(ready.begin(), ready.end(), [&](int p) {
+    const auto next = std::find_if(s.ready.begin(), s.ready.end(), [&](int p) {
       return m_passes[size_t(p)].threads == Threads::Main || flying.size() < kMostInFlight;
     });
-    if (next != ready.end()) {
+    if (next != s.ready.end()) {
       const int pass = *next;
-      ready.erase(next);
+      s.ready.erase(next);
       if (m_passes[size_t(pass)].threads == Threads::Any) {
         flying.push_back({pass, std::async(std::launch::async, [this, pass, &landings] {
                             const Landed landed{landings, pass};

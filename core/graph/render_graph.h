@@ -155,6 +155,8 @@ class RenderGraph {
     Threads threads = Threads::Main;
     bool live = false;
   };
+  struct Schedule;
+  Schedule schedule() const;
   void run_pass(int pass);
   // What execute() does once `pass` has run: checks its outputs, shows them to the observer,
   // frees the inputs it read last, and tells after_pass.
