@@ -46,8 +46,9 @@ using watercolor_internal::to_display;
 using watercolor_internal::to_linear;
 
 // The washes' shapes from the scene: the parts' density smoothed by this share of the wash blur
-// (at least 2 px), a part where its coverage reaches kPartLevel; the wood under the leaves where
-// its own reaches kWoodLevel (the trunk and the main branches, not every twig inside the crown).
+// (at least 2 px), a part where its coverage reaches kPartLevel (low: thin foliage, a willow's
+// curtain, is inside its mass, where its wash thins, watercolor_layers.h kThinCover); the wood
+// under the leaves where its own reaches kWoodLevel (the trunk and main branches, not every twig).
 constexpr float kPartSigma = 2.0f;
 constexpr float kPartLevel = 0.15f;
 constexpr float kWoodLevel = 0.6f;
