@@ -34,6 +34,7 @@ using watercolor_internal::key_shadow;
 using watercolor_internal::kSqrt2Pi;
 using watercolor_internal::Layer;
 using watercolor_internal::luminance;
+using watercolor_internal::mask_factor;
 using watercolor_internal::paper_relief;
 using watercolor_internal::PaperField;
 using watercolor_internal::rim_allowed;
@@ -277,7 +278,7 @@ CrownParts scene_parts(const WatercolorImages& in, const Shared& s, std::vector<
   const double smoothing = large_leaved(in.pieces.get()) ? kLargeLeafSmoothing : 1.0;
   // At the resolution the washes' masks are blurred at (paint_layer's), then up-sampled: the
   // parts are smooth at that scale.
-  const int f = std::clamp(int(s.sigma / 2.0f), 1, 4);
+  const int f = mask_factor(s.sigma);
   Camera camera = in.camera;
   camera.width = (s.size.width + f - 1) / f;
   camera.height = (s.size.height + f - 1) / f;
@@ -467,8 +468,8 @@ cv::Mat watercolor(const WatercolorImages& input, const glm::mat4& view_to_world
   if (p.wobble > 0.0f && !sorted.empty()) set_wobble(paper, p, scale, s);
   s.rim_ok = rim_allowed(s, sorted, p.rim_step);
   if (in.samples && has_projection(in))
-    s.cover = foliage_cover(*in.samples, in.camera, s.size, kPartSigma * std::max(s.sigma, 2.0f),
-                            in.wood_cluster);
+    s.cover = foliage_cover(*in.samples, in.camera, s.size, mask_factor(s.sigma),
+                            kPartSigma * std::max(s.sigma, 2.0f), in.wood_cluster);
   if (p.gradation > 0.0f || p.warm_cool > 0.0f)
     s.soft_luminance = smoothed_luminance(s, in.id != 0);
   const bool wood = in.wood_cluster != 0;

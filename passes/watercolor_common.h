@@ -74,6 +74,13 @@ inline float sample(const cv::Mat& m, float x, float y) {
   return a + (b - a) * fy;
 }
 
+// A field kept at a reduced resolution (`m`, CV_32FC1) read at pixel (x, y) of an image of
+// `size`: bilinear, as cv::resize's INTER_LINEAR samples it.
+inline float sample_at(const cv::Mat& m, cv::Size size, int x, int y) {
+  const float fx = float(m.cols) / float(size.width), fy = float(m.rows) / float(size.height);
+  return sample(m, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
+}
+
 // How much a glazed optical density (CV_32FC3 pixel) counts as paint, in [0, 1]: a wash whose
 // channels' densities sum to kCoveringDensity or more covers the paper.
 constexpr float kCoveringDensity = 1.5f;

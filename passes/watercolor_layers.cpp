@@ -324,7 +324,7 @@ void wash_density(const Shared& s, const Layer& layer, int k, const BlockScale& 
 void paint_layer(const Shared& s, const Layer& layer, int k, GlazeInto& into) {
   const cv::Rect roi = layer_roi(s, layer);
   // The masks are blurred at 1/f of the resolution (they are smooth after the blur).
-  const BlockScale scale(std::clamp(int(s.sigma / 2.0f), 1, 4));
+  const BlockScale scale(mask_factor(s.sigma));
   const bool detail = s.detail > 0.0f;
   BlockMasks blocks = block_masks(s, roi, k, scale.f, detail);
   if (s.close > 0.0f && layer.id != s.wood) close_over_paper(blocks, s.close / float(scale.f));

@@ -9,6 +9,7 @@
 // parallel; glazing them together (in a fixed order) is the caller's.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <opencv2/core.hpp>
@@ -48,6 +49,12 @@ struct Layer {
 inline constexpr float kThinCover = 0.075f;
 inline constexpr float kFullCover = 0.45f;
 
+// The washes' masks are blurred at 1 / mask_factor of the resolution (smooth there), and the
+// fields they are shaped by (the crown's parts, the leaves' coverage) are made at it too.
+inline int mask_factor(float sigma) {
+  return std::clamp(int(sigma / 2.0f), 1, 4);
+}
+
 struct Shared {
   cv::Size size;
   // CV_32SC1: index of the layer (back to front), -1 background: the washes' shapes. From the
@@ -73,21 +80,13 @@ struct Shared {
   // values, at a quarter of the resolution: soft_at): the wet-in-wet gradation of value inside
   // a wash follows it by `gradation`.
   cv::Mat soft_luminance;
-  // soft_luminance at image pixel (x, y), bilinear (as cv::resize's INTER_LINEAR samples it).
-  float soft_at(int x, int y) const {
-    const float fx = float(soft_luminance.cols) / float(size.width);
-    const float fy = float(soft_luminance.rows) / float(size.height);
-    return sample(soft_luminance, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
-  }
+  // soft_luminance at image pixel (x, y) (sample_at).
+  float soft_at(int x, int y) const { return sample_at(soft_luminance, size, x, y); }
   // The leaves' coverage smoothed at the washes' scale (CV_32FC1 in [0, 1], at a fraction of
   // the resolution: cover_at; watercolor_light.h foliage_cover), from the scene's samples; empty
   // without them. A leaf wash's pigment fades in from kThinCover to kFullCover of it.
   cv::Mat cover;
-  float cover_at(int x, int y) const {
-    const float fx = float(cover.cols) / float(size.width);
-    const float fy = float(cover.rows) / float(size.height);
-    return sample(cover, (float(x) + 0.5f) * fx - 0.5f, (float(y) + 0.5f) * fy - 0.5f);
-  }
+  float cover_at(int x, int y) const { return sample_at(cover, size, x, y); }
   float gradation = 0;
   float warm_cool = 0;  // watercolor.warm_cool: the lit side warmer, the shaded side cooler
   // Gaps in a mass's wash smaller than this (px; the closing's radius) are painted over where

@@ -11,10 +11,6 @@
 
 namespace sylva::watercolor_internal {
 
-// foliage_cover works at 1 / f of the resolution, f = sigma / (2 kCoverSigma) clamped to
-// [1, 4]: at least kCoverSigma px of smoothing there (smooth enough for bilinear up-sampling).
-constexpr float kCoverSigma = 2.5f;
-
 // The narrowest wood the watercolor paints where it is seen, px at 1024 px.
 constexpr double kSeenWoodWidth = 5.0;
 // The least area of a piece of it, px at 1024 px: a branch, not the spot where a twig turns
@@ -92,9 +88,8 @@ cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale) {
   return seen;
 }
 
-cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
+cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size, int f,
                       float sigma, uint32_t wood) {
-  const int f = std::clamp(int(sigma / (2.0f * kCoverSigma)), 1, 4);
   const cv::Size small((size.width + f - 1) / f, (size.height + f - 1) / f);
   return crown_coverage(samples, camera, small, sigma / float(f), wood);
 }

@@ -29,10 +29,10 @@ cv::Mat smoothed_luminance(const Shared& s, const cv::Mat& covered);
 cv::Mat seen_wood(const cv::Mat& id, uint32_t wood_cluster, double scale);
 
 // Shared::cover: the leaves' coverage (passes/crown_coverage.h crown_coverage, the `wood`
-// cluster's samples left out) smoothed by a Gaussian of `sigma` px, at the resolution the
-// washes' masks are blurred at (Shared::cover_at reads it): where the foliage thins, its wash
-// thins with it (watercolor_layers.h kThinCover, kFullCover).
-cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size,
+// cluster's samples left out) smoothed by a Gaussian of `sigma` px, at 1 / f of the resolution
+// (mask_factor; Shared::cover_at reads it): where the foliage thins, its wash thins with it
+// (watercolor_layers.h kThinCover, kFullCover).
+cv::Mat foliage_cover(const SurfaceSamples& samples, const Camera& camera, cv::Size size, int f,
                       float sigma, uint32_t wood);
 
 }  // namespace sylva::watercolor_internal
