@@ -3,6 +3,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <utility>
 
@@ -42,14 +43,24 @@ std::pair<float, float> stroke_rows(const Stroke& s) {
   return {lo - reach, hi + reach};
 }
 
-void paint(cairo_t* cr, const StrokeDrawing& d, double scale, float row_lo, float row_hi) {
+// A stroke rasterize_strokes covers itself (line_coverage) rather than through cairo: a line of
+// one width. Cairo strokes these exactly but slowly (its stroker and scan converter cost about 1
+// µs per point); a branch's thousands of hairlines are the ink frame's longest pass with it.
+bool covered_as_line(const Stroke& s) {
+  return !s.filled && s.constant_width() && s.points.size() > 1;
+}
+
+// Paints d's strokes (those covered_as_line too where `lines`) whose rows can reach
+// [row_lo, row_hi].
+void paint(cairo_t* cr, const StrokeDrawing& d, double scale, float row_lo, float row_hi,
+           bool lines) {
   const double r = linear_to_srgb(d.color.r), g = linear_to_srgb(d.color.g),
                b = linear_to_srgb(d.color.b);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
   for (const Stroke& s : d.strokes) {
-    if (s.points.empty() || s.opacity <= 0.0f) continue;
+    if (s.points.empty() || s.opacity <= 0.0f || (!lines && covered_as_line(s))) continue;
     if (row_lo > -kNoCull) {
       const auto [lo, hi] = stroke_rows(s);
       if (hi < row_lo || lo > row_hi) continue;
@@ -77,10 +88,96 @@ void paint(cairo_t* cr, const StrokeDrawing& d, double scale, float row_lo, floa
   cairo_new_path(cr);
 }
 
+// The share of a pixel at distance `dist` px from a line's axis that the line, `half` px to
+// either side of its axis, covers: the overlap of [-half, half] with the pixel's extent across
+// the line, [dist - 0.5, dist + 0.5] (exact for a long line along a pixel row, within a few
+// per cent at any angle).
+float cross_coverage(float dist, float half) {
+  return std::clamp(std::min(half, dist + 0.5f) - std::max(-half, dist - 0.5f), 0.0f, 1.0f);
+}
+
+// The pixels a box [lo, hi] touches along one axis, within [0, n): [first, end).
+std::pair<int, int> pixel_span(float lo, float hi, int n) {
+  const float a = std::clamp(std::floor(lo), 0.0f, float(n)),
+              b = std::clamp(std::ceil(hi), 0.0f, float(n));
+  return {int(a), int(b)};
+}
+
+// The coverage of the segment [a, b], `half` px to either side, kept in `cover` where it is
+// more than `cover` holds; `cover`'s pixel (0, 0) is the frame's `origin`.
+void cover_segment(cv::Mat& cover, cv::Point origin, glm::vec2 a, glm::vec2 b, float half) {
+  const float reach = half + 1.0f;
+  const glm::vec2 o(origin.x, origin.y), lo = glm::min(a, b) - reach - o,
+                                         hi = glm::max(a, b) + reach - o;
+  const auto [x0, x1] = pixel_span(lo.x, hi.x, cover.cols);
+  const auto [y0, y1] = pixel_span(lo.y, hi.y, cover.rows);
+  const glm::vec2 ab = b - a;
+  const float len2 = glm::dot(ab, ab), inv = len2 > 1e-12f ? 1.0f / len2 : 0.0f;
+  const float far2 = (half + 0.5f) * (half + 0.5f);  // no coverage from this squared distance
+  for (int y = y0; y < y1; ++y) {
+    float* row = cover.ptr<float>(y);
+    const float py = float(origin.y + y) + 0.5f - a.y;
+    for (int x = x0; x < x1; ++x) {
+      const float px = float(origin.x + x) + 0.5f - a.x;
+      const float t = std::clamp((px * ab.x + py * ab.y) * inv, 0.0f, 1.0f);
+      const float ex = px - t * ab.x, ey = py - t * ab.y, d2 = ex * ex + ey * ey;
+      if (d2 < far2) row[x] = std::max(row[x], cross_coverage(std::sqrt(d2), half));
+    }
+  }
+}
+
+// Composites a line stroke (covered_as_line) over `coverage`'s rows [rows.start, rows.end)
+// (coverage += c (1 - coverage), c its coverage times its opacity, as cairo's OVER): each pixel
+// covered as by its nearest segment, so the line's joins and ends are round, as cairo's.
+// `scratch` holds the stroke's own coverage over its box.
+void cover_line(cv::Mat& coverage, const Stroke& s, cv::Range rows, cv::Mat& scratch) {
+  const float half = 0.5f * s.width, reach = half + 1.0f;
+  const float opacity = std::min(s.opacity, 1.0f);
+  glm::vec2 lo = s.points[0], hi = s.points[0];
+  bool finite = std::isfinite(half);
+  for (const glm::vec2& q : s.points) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+    finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
+  }
+  if (!finite) return;
+  const auto [x0, x1] = pixel_span(lo.x - reach, hi.x + reach, coverage.cols);
+  const auto [y0, y1] = pixel_span(std::max(lo.y - reach, float(rows.start)),
+                                   std::min(hi.y + reach, float(rows.end)), coverage.rows);
+  if (x0 >= x1 || y0 >= y1) return;
+  scratch.create(y1 - y0, x1 - x0, CV_32F);
+  scratch.setTo(0.0f);
+  const size_t n = s.points.size();
+  for (size_t i = 0; i + 1 < n + (s.closed ? 1 : 0); ++i)
+    cover_segment(scratch, {x0, y0}, s.points[i], s.points[(i + 1) % n], half);
+  for (int y = y0; y < y1; ++y) {
+    float* dst = coverage.ptr<float>(y) + x0;
+    const float* src = scratch.ptr<float>(y - y0);
+    for (int x = 0; x < x1 - x0; ++x)
+      dst[x] += src[x] * opacity * (1.0f - dst[x]);
+  }
+}
+
+// Paints the strokes cairo draws (all but the lines) reaching rows [y0, y1) on those rows of
+// `alpha` (CV_8UC1, cairo's A8 stride). False when cairo cannot make the surface.
+bool paint_band(cv::Mat& alpha, const StrokeDrawing& d, int y0, int y1) {
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create_for_data(alpha.ptr(y0), CAIRO_FORMAT_A8, d.size.width, y1 - y0,
+                                          int(alpha.step[0])),
+      &cairo_surface_destroy);
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return false;
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
+                                                        &cairo_destroy);
+  cairo_translate(cr.get(), 0.0, -double(y0));
+  paint(cr.get(), d, 1.0, float(y0), float(y1), false);
+  cairo_surface_flush(surface.get());
+  return true;
+}
+
 }  // namespace
 
 void paint_strokes(cairo_t* cr, const StrokeDrawing& d, double scale) {
-  paint(cr, d, scale, -kNoCull, kNoCull);
+  paint(cr, d, scale, -kNoCull, kNoCull, true);
 }
 
 cv::Mat rasterize_strokes(const StrokeDrawing& d) {
@@ -88,32 +185,28 @@ cv::Mat rasterize_strokes(const StrokeDrawing& d) {
   const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_A8, d.size.width);
   SYLVA_CHECK(stride > 0, "rasterize_strokes: the image is too wide");
   cv::Mat alpha(d.size.height, stride, CV_8UC1, cv::Scalar(0));
+  cv::Mat coverage(d.size, CV_32F);
   // Bands of rows painted in parallel, each a cairo surface over its rows of `alpha` that draws
-  // the strokes reaching it: the same pixels, at the same integer offsets, as one surface
-  // gives.
+  // the strokes reaching it (the same pixels, at the same integer offsets, as one surface
+  // gives), then the lines covered over them.
   const int bands = std::clamp(d.size.height / kBandRows, 1, std::max(1, 2 * cv::getNumThreads()));
   bool ok = true;
   cv::parallel_for_(cv::Range(0, bands), [&](const cv::Range& r) {
+    cv::Mat scratch;
     for (int b = r.start; b < r.end; ++b) {
       const int y0 = d.size.height * b / bands, y1 = d.size.height * (b + 1) / bands;
-      std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-          cairo_image_surface_create_for_data(alpha.ptr(y0), CAIRO_FORMAT_A8, d.size.width, y1 - y0,
-                                              stride),
-          &cairo_surface_destroy);
-      if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-        ok = false;
-        continue;
+      if (!paint_band(alpha, d, y0, y1)) ok = false;
+      alpha.rowRange(y0, y1)
+          .colRange(0, d.size.width)
+          .convertTo(coverage.rowRange(y0, y1), CV_32F, 1.0 / 255.0);
+      for (const Stroke& s : d.strokes) {
+        if (!covered_as_line(s) || s.opacity <= 0.0f) continue;
+        const auto [lo, hi] = stroke_rows(s);
+        if (hi >= float(y0) && lo <= float(y1)) cover_line(coverage, s, {y0, y1}, scratch);
       }
-      std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
-                                                            &cairo_destroy);
-      cairo_translate(cr.get(), 0.0, -double(y0));
-      paint(cr.get(), d, 1.0, float(y0), float(y1));
-      cairo_surface_flush(surface.get());
     }
   });
   SYLVA_CHECK(ok, "rasterize_strokes: cannot create the surface");
-  cv::Mat coverage;
-  alpha.colRange(0, d.size.width).convertTo(coverage, CV_32F, 1.0 / 255.0);
   return coverage;
 }
 

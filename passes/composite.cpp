@@ -109,14 +109,12 @@ cv::Mat make_paper(const cv::Size& size, const PaperParams& p) {
   return paper;
 }
 
-ImageHandle add_paper_pass(RenderGraph& g, ImageHandle size_of, const PaperParams& p) {
+ImageHandle add_paper_pass(RenderGraph& g, cv::Size size, const PaperParams& p) {
   check_paper(p);
+  SYLVA_CHECK(size.width > 0 && size.height > 0, "paper: empty size");
   const auto out = g.resource<cv::Mat>("paper");
   g.add_pass(
-      "paper", {size_of}, {out},
-      [p, size_of, out](PassContext& ctx) {
-        ctx.write(out, make_paper(ctx.read<cv::Mat>(size_of).size(), p));
-      },
+      "paper", {}, {out}, [p, size, out](PassContext& ctx) { ctx.write(out, make_paper(size, p)); },
       RenderGraph::Threads::Any);
   return out;
 }
@@ -134,6 +132,77 @@ void bind_ink_params(ParamSet& set, InkParams& p) {
   set.add_bool("ink.transparent", p.transparent, "paper only under the drawing, alpha 0 elsewhere");
 }
 
+namespace {
+
+// What composite_ink lays on every pixel, and its tables.
+struct InkComposite {
+  const cv::Mat &lines, &coverage_or_color, &paper;
+  float fill;
+  cv::Vec3f line;   // linear BGR of the lines
+  cv::Vec3f line8;  // the same, sRGB-encoded (0..255)
+  const std::array<float, 256>& decode = decode_lut();
+  const std::vector<uint8_t>& encode_table = encode_lut();
+};
+
+// One row of composite_ink, for a colour (kColor) or a coverage, with a wash (kWash: ink.fill >
+// 0) or without (the ground is the paper), on an opaque or a transparent ground.
+template <bool kColor, bool kWash, bool kTransparent>
+void composite_row(const InkComposite& in, int y, cv::Vec4b* o) {
+  const float* l = in.lines.ptr<float>(y);
+  const cv::Vec3f* pp = in.paper.ptr<cv::Vec3f>(y);
+  const cv::Vec4b* c = kColor ? in.coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
+  const float* m = kColor ? nullptr : in.coverage_or_color.ptr<float>(y);
+  for (int x = 0; x < in.lines.cols; ++x) {
+    float a = 0.0f;
+    if constexpr (kWash || kTransparent)
+      a = kColor ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
+    cv::Vec3f ground = pp[x];
+    if constexpr (kWash) {
+      const cv::Vec3f shaded =
+          kColor ? cv::Vec3f(in.decode[c[x][0]], in.decode[c[x][1]], in.decode[c[x][2]]) : in.line;
+      const float wash = in.fill * a;
+      for (int k = 0; k < 3; ++k)
+        ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
+    }
+    const float ink = std::clamp(l[x], 0.0f, 1.0f);
+    // The lines go over the ground in sRGB-encoded values, as SVG and PDF renderers composite,
+    // so the raster ink and the vector files look the same.
+    float alpha = 1.0f, keep = 1.0f - ink;
+    if constexpr (kTransparent) {
+      // Straight alpha: lines over the ground, which covers only the drawing.
+      alpha = ink + a * (1.0f - ink);
+      keep = alpha > 0.0f ? a * (1.0f - ink) / alpha : 1.0f;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const uint8_t g = encode(in.encode_table, ground[k]);
+      // Bare ground (most of the picture) as it is: the blend would give the same byte.
+      o[x][k] = keep == 1.0f
+                    ? g
+                    : uint8_t(round_non_negative(float(g) * keep + in.line8[k] * (1.0f - keep)));
+    }
+    o[x][3] = kTransparent ? uint8_t(round_non_negative(alpha * 255.0f)) : uint8_t(255);
+  }
+}
+
+template <bool kColor, bool kWash, bool kTransparent>
+void composite_rows(const InkComposite& in, cv::Mat& out) {
+  // Rows in parallel: every pixel depends only on its inputs.
+  for_bands(out.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      composite_row<kColor, kWash, kTransparent>(in, y, out.ptr<cv::Vec4b>(y));
+  });
+}
+
+using CompositeRows = void (*)(const InkComposite&, cv::Mat&);
+// By [colour][wash][transparent].
+constexpr CompositeRows kCompositeRows[2][2][2] = {
+    {{composite_rows<false, false, false>, composite_rows<false, false, true>},
+     {composite_rows<false, true, false>, composite_rows<false, true, true>}},
+    {{composite_rows<true, false, false>, composite_rows<true, false, true>},
+     {composite_rows<true, true, false>, composite_rows<true, true, true>}}};
+
+}  // namespace
+
 cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, const cv::Mat& paper,
                       const InkParams& p) {
   const cv::Size size = lines.size();
@@ -142,51 +211,18 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
   const bool has_color = coverage_or_color.type() == CV_8UC4;
   expect_image(coverage_or_color, has_color ? CV_8UC4 : CV_32FC1, size, "coverage or color");
   SYLVA_CHECK(std::isfinite(p.fill) && p.fill >= 0.0f && p.fill <= 1.0f, "ink: fill range");
-
-  const std::array<float, 256>& decode = decode_lut();
-  const cv::Vec3f line(p.line_color.b, p.line_color.g, p.line_color.r);
-  const std::vector<uint8_t>& encode_table = encode_lut();
-  const cv::Vec3f line8(encode(encode_table, line[0]), encode(encode_table, line[1]),
-                        encode(encode_table, line[2]));
+  InkComposite in{lines, coverage_or_color, paper, p.fill, {}, {}};
+  in.line = cv::Vec3f(p.line_color.b, p.line_color.g, p.line_color.r);
+  for (int k = 0; k < 3; ++k)
+    in.line8[k] = encode(in.encode_table, in.line[k]);
   cv::Mat out(size, CV_8UC4);
-  // Rows in parallel: every pixel depends only on its inputs.
-  for_bands(size.height, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      const float* l = lines.ptr<float>(y);
-      const cv::Vec3f* pp = paper.ptr<cv::Vec3f>(y);
-      const cv::Vec4b* c = has_color ? coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
-      const float* m = has_color ? nullptr : coverage_or_color.ptr<float>(y);
-      cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
-      for (int x = 0; x < size.width; ++x) {
-        const float a = has_color ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
-        const cv::Vec3f shaded =
-            has_color ? cv::Vec3f(decode[c[x][0]], decode[c[x][1]], decode[c[x][2]]) : line;
-        const float wash = p.fill * a;
-        cv::Vec3f ground;
-        for (int k = 0; k < 3; ++k)
-          ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
-        const float ink = std::clamp(l[x], 0.0f, 1.0f);
-        // The lines go over the ground in sRGB-encoded values, as SVG and PDF renderers
-        // composite, so the raster ink and the vector files look the same.
-        float alpha = 1.0f, keep = 1.0f - ink;
-        if (p.transparent) {
-          // Straight alpha: lines over the ground, which covers only the drawing.
-          alpha = ink + a * (1.0f - ink);
-          keep = alpha > 0.0f ? a * (1.0f - ink) / alpha : 1.0f;
-        }
-        for (int k = 0; k < 3; ++k)
-          o[x][k] = uint8_t(round_non_negative(float(encode(encode_table, ground[k])) * keep +
-                                               line8[k] * (1.0f - keep)));
-        o[x][3] = uint8_t(round_non_negative(alpha * 255.0f));
-      }
-    }
-  });
+  kCompositeRows[has_color][p.fill > 0.0f][p.transparent](in, out);
   return out;
 }
 
 ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
-                                   const InkParams& p) {
-  const ImageHandle paper = add_paper_pass(g, coverage_or_color, p.paper);
+                                   const InkParams& p, cv::Size size) {
+  const ImageHandle paper = add_paper_pass(g, size, p.paper);
   const auto out = g.resource<cv::Mat>("ink");
   g.add_pass(
       "ink-composite", {lines, coverage_or_color, paper}, {out},

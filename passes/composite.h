@@ -39,8 +39,9 @@ struct PaperParams {
 // The paper at `size`: CV_32FC3 linear BGR, finite and >= 0.
 cv::Mat make_paper(const cv::Size& size, const PaperParams& p);
 
-// Adds the pass "paper" (reads `size_of`, any cv::Mat, for its size) and returns "paper".
-ImageHandle add_paper_pass(RenderGraph& g, ImageHandle size_of, const PaperParams& p);
+// Adds the pass "paper" at `size` and returns "paper". It reads nothing, so it runs while the
+// raster draws.
+ImageHandle add_paper_pass(RenderGraph& g, cv::Size size, const PaperParams& p);
 
 struct InkParams {
   PaperParams paper;  // ink.paper_color, ink.grain, ink.grain_size, ink.seed
@@ -65,9 +66,10 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
                       const InkParams& p);
 
 // Adds the paper pass and the pass "ink-composite"; returns its output "ink" (cv::Mat
-// CV_8UC4 BGRA sRGB).
+// CV_8UC4 BGRA sRGB). size: the frame's, which the lines and coverage_or_color have (the paper
+// is made at it without waiting for them).
 ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
-                                   const InkParams& p);
+                                   const InkParams& p, cv::Size size);
 
 // A stacked preset's lines over the picture below them (styles/style.h, build_layers): the
 // line colour (linear RGB) laid over `picture` (CV_8UC4 BGRA sRGB, straight alpha) with the

@@ -24,6 +24,29 @@ namespace {
 constexpr int kStepX[4] = {1, 0, -1, 0};
 constexpr int kStepY[4] = {0, 1, 0, -1};
 
+// The cracks meeting at each corner of a W x H image ((H + 1) x (W + 1), CV_8UC1) from the
+// 0/255 crack images: a crack of `x` at (row r, column c) joins corners (c + 1, r) and
+// (c + 1, r + 1); one of `y` at (r, c) joins (c, r + 1) and (c + 1, r + 1).
+cv::Mat corner_degrees(const cv::Mat& x, const cv::Mat& y, int w, int h) {
+  cv::Mat degree(h + 1, w + 1, CV_8UC1, cv::Scalar(0));
+  // Adds `ones` (1 per crack) to the corners offset by (dx, dy) from the cracks' cells.
+  auto add_at = [&](const cv::Mat& ones, int dx, int dy) {
+    cv::Mat corners = degree(cv::Rect(dx, dy, ones.cols, ones.rows));
+    corners += ones;
+  };
+  if (!x.empty()) {
+    const cv::Mat ones = cv::min(x, 1);
+    add_at(ones, 1, 0);
+    add_at(ones, 1, 1);
+  }
+  if (!y.empty()) {
+    const cv::Mat ones = cv::min(y, 1);
+    add_at(ones, 0, 1);
+    add_at(ones, 1, 1);
+  }
+  return degree;
+}
+
 class CornerGraph {
  public:
   explicit CornerGraph(const Cracks& c) : m_w(c.image().width), m_h(c.image().height) {
@@ -34,17 +57,22 @@ class CornerGraph {
     // A one-pixel-wide or -high image has no cracks one way (an empty image).
     m_free_x = c.x.empty() ? cv::Mat() : cv::Mat(c.x != 0);
     m_free_y = c.y.empty() ? cv::Mat() : cv::Mat(c.y != 0);
-    m_marked_x = m_free_x.clone();
-    m_marked_y = m_free_y.clone();
+    m_degree = corner_degrees(m_free_x, m_free_y, m_w, m_h);
+  }
+  // The corners that touch a crack, row by row (y, then x).
+  std::vector<cv::Point> corners() const {
+    std::vector<cv::Point> out;
+    cv::findNonZero(m_degree, out);
+    return out;
   }
   int width() const { return m_w; }
   int height() const { return m_h; }
 
-  // The crack leaving corner (cx, cy) in direction d: a cell of the free (or, with `marked`,
-  // the original) images, or null when there is none there.
-  uint8_t* crack(int cx, int cy, int d, bool marked = false) {
-    cv::Mat& x = marked ? m_marked_x : m_free_x;
-    cv::Mat& y = marked ? m_marked_y : m_free_y;
+  // The crack leaving corner (cx, cy) in direction d: a cell of the free images, or null when
+  // there is none there.
+  uint8_t* crack(int cx, int cy, int d) {
+    cv::Mat& x = m_free_x;
+    cv::Mat& y = m_free_y;
     switch (d) {
       case 0:  // +x: between pixels (cx, cy - 1) and (cx, cy)
         return cy >= 1 && cy < m_h && cx >= 0 && cx < m_w ? y.ptr<uint8_t>(cy - 1) + cx : nullptr;
@@ -62,14 +90,8 @@ class CornerGraph {
     const uint8_t* c = crack(cx, cy, d);
     return c != nullptr && *c != 0;
   }
-  int degree(int cx, int cy) {
-    int n = 0;
-    for (int d = 0; d < 4; ++d) {
-      const uint8_t* c = crack(cx, cy, d, true);
-      n += c != nullptr && *c != 0;
-    }
-    return n;
-  }
+  // The cracks meeting at corner (cx, cy), used or not.
+  int degree(int cx, int cy) const { return m_degree.at<uint8_t>(cy, cx); }
   void use(int cx, int cy, int d) { *crack(cx, cy, d) = 0; }
 
   // Follows free cracks from corner (cx, cy) leaving in direction d (free).
@@ -106,32 +128,9 @@ class CornerGraph {
   }
 
   int m_w, m_h;
-  cv::Mat m_free_x, m_free_y, m_marked_x, m_marked_y;
+  cv::Mat m_free_x, m_free_y;
+  cv::Mat m_degree;  // CV_8UC1, (H + 1) x (W + 1): the cracks meeting at each corner
 };
-
-// The corners at the ends of the cracks, row by row (y, then x), each once. A crack of
-// `cracks.y` at (row r, column c) joins corners (c, r + 1) and (c + 1, r + 1); one of `cracks.x`
-// at (r, c) joins (c + 1, r) and (c + 1, r + 1).
-std::vector<cv::Point> cracked_corners(const Cracks& cracks) {
-  const cv::Size image = cracks.image();
-  cv::Mat touched(image.height + 1, image.width + 1, CV_8UC1, cv::Scalar(0));
-  for (int r = 0; r < cracks.y.rows; ++r) {
-    const uint8_t* c = cracks.y.ptr<uint8_t>(r);
-    uint8_t* t = touched.ptr<uint8_t>(r + 1);
-    for (int x = 0; x < cracks.y.cols; ++x)
-      if (c[x]) t[x] = t[x + 1] = 1;
-  }
-  for (int r = 0; r < cracks.x.rows; ++r) {
-    const uint8_t* c = cracks.x.ptr<uint8_t>(r);
-    uint8_t* t0 = touched.ptr<uint8_t>(r);
-    uint8_t* t1 = touched.ptr<uint8_t>(r + 1);
-    for (int x = 0; x < cracks.x.cols; ++x)
-      if (c[x]) t0[x + 1] = t1[x + 1] = 1;
-  }
-  std::vector<cv::Point> corners;
-  cv::findNonZero(touched, corners);
-  return corners;
-}
 
 }  // namespace
 
@@ -144,7 +143,7 @@ std::vector<Polyline> chain_cracks(const Cracks& cracks) {
   };
   // Only corners that touch a crack can start a chain: they are visited in the order a scan of
   // every corner would visit them.
-  const std::vector<cv::Point> corners = cracked_corners(cracks);
+  const std::vector<cv::Point> corners = g.corners();
   for (int pass = 0; pass < 2; ++pass)  // ends first, then junctions
     for (const cv::Point& c : corners) {
       const int deg = g.degree(c.x, c.y);
@@ -180,15 +179,20 @@ Polyline smooth_polyline(const Polyline& p, double sigma) {
              cv::Point2d(p.points[size_t(std::max(0, 2 * (n - 1) - j))]);
     return p.points[size_t(j)];
   };
+  double total = 0;
+  for (double wk : w)
+    total += wk;
   Polyline out;
   out.closed = p.closed;
   out.points.resize(size_t(n));
   for (int i = 0; i < n; ++i) {
     cv::Point2d sum(0, 0);
-    double total = 0;
-    for (int k = -radius; k <= radius; ++k) {
-      sum += w[size_t(k + radius)] * at(i + k);
-      total += w[size_t(k + radius)];
+    if (i >= radius && i + radius < n) {  // inside: the points themselves
+      for (int k = -radius; k <= radius; ++k)
+        sum += w[size_t(k + radius)] * cv::Point2d(p.points[size_t(i + k)]);
+    } else {
+      for (int k = -radius; k <= radius; ++k)
+        sum += w[size_t(k + radius)] * at(i + k);
     }
     out.points[size_t(i)] = cv::Point2f(sum / total);
   }

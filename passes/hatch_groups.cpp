@@ -158,10 +158,14 @@ cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const 
   const cv::Mat r = normalised_blur(rank.mul(mask), mask, sigma);
   cv::Mat t(rank.size(), CV_32FC1);
   const float lo = p.lightest, hi = std::max(p.darkest, p.lightest + 1e-3f);
-  for (int y = 0; y < r.rows; ++y)
-    for (int x = 0; x < r.cols; ++x)
-      t.at<float>(y, x) =
-          std::pow(std::clamp((r.at<float>(y, x) - lo) / (hi - lo), 0.0f, 1.0f), p.gamma);
+  for_bands(r.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const float* from = r.ptr<float>(y);
+      float* to = t.ptr<float>(y);
+      for (int x = 0; x < r.cols; ++x)
+        to[x] = std::pow(std::clamp((from[x] - lo) / (hi - lo), 0.0f, 1.0f), p.gamma);
+    }
+  });
   return t;
 }
 
@@ -282,18 +286,25 @@ cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
   }
   const auto bin = [](float v) { return std::clamp(int(v * float(kRankBins)), 0, kRankBins - 1); };
   std::vector<int> count(kRankBins, 0);
-  for (int y = 0; y < wood.rows; ++y)
+  for (int y = 0; y < wood.rows; ++y) {
+    const uint8_t* is_wood = wood.ptr<uint8_t>(y);
+    const float* d = dark.ptr<float>(y);
     for (int x = 0; x < wood.cols; ++x)
-      if (wood.at<uint8_t>(y, x)) ++count[size_t(bin(dark.at<float>(y, x)))];
+      if (is_wood[x]) ++count[size_t(bin(d[x]))];
+  }
   std::vector<float> mid(kRankBins);
   int64_t below = 0;
   for (int b = 0; b < kRankBins; ++b) {
     mid[size_t(b)] = float((double(below) + 0.5 * count[size_t(b)]) / double(n));
     below += count[size_t(b)];
   }
-  for (int y = 0; y < wood.rows; ++y)
+  for (int y = 0; y < wood.rows; ++y) {
+    const uint8_t* is_wood = wood.ptr<uint8_t>(y);
+    const float* d = dark.ptr<float>(y);
+    float* r = rank.ptr<float>(y);
     for (int x = 0; x < wood.cols; ++x)
-      if (wood.at<uint8_t>(y, x)) rank.at<float>(y, x) = mid[size_t(bin(dark.at<float>(y, x)))];
+      if (is_wood[x]) r[x] = mid[size_t(bin(d[x]))];
+  }
   return rank;
 }
 

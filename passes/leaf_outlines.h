@@ -8,6 +8,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <opencv2/core.hpp>
+#include <utility>
 #include <vector>
 
 #include "core/strokes.h"
@@ -39,12 +40,13 @@ void ellipse_spans(const Primitive& p, float k, cv::Size size, int y_from, int y
   const double a = p.a * k, b = p.b * k;
   if (!(a > 0.0) || !(b > 0.0)) return;
   const double c2 = p.cos_t * p.cos_t, s2 = p.sin_t * p.sin_t;
-  const double qa = c2 / (a * a) + s2 / (b * b),
-               qb = p.cos_t * p.sin_t * (1 / (a * a) - 1 / (b * b)),
-               qc = s2 / (a * a) + c2 / (b * b);
   const double ry = std::sqrt(a * a * s2 + b * b * c2);
   const int y0 = std::max(y_from, int(std::ceil(p.c.y - ry - 0.5))),
             y1 = std::min(y_to - 1, int(std::floor(p.c.y + ry - 0.5)));
+  if (y0 > y1) return;
+  const double qa = c2 / (a * a) + s2 / (b * b),
+               qb = p.cos_t * p.sin_t * (1 / (a * a) - 1 / (b * b)),
+               qc = s2 / (a * a) + c2 / (b * b);
   for (int y = y0; y <= y1; ++y) {
     const double dy = y + 0.5 - p.c.y;
     const double disc = qb * qb * dy * dy - qa * (qc * dy * dy - 1.0);
@@ -62,6 +64,14 @@ void ellipse_spans(const Primitive& p, float k, cv::Size size, int y_from, int y
 // than `least` working px of semi-axis; those in front of the eye and near the frame.
 std::vector<Primitive> project_primitives(const LeafImages& in, LeafShape shape, double f,
                                           float least, double cell);
+
+// The rows [first, last] that pixel centres in ellipse `p` scaled by `k` can lie on (unclipped;
+// ellipse_spans calls no others).
+inline std::pair<int, int> ellipse_rows(const Primitive& p, float k) {
+  const double a = p.a * k, b = p.b * k;
+  const double ry = std::sqrt(a * a * p.sin_t * p.sin_t + b * b * p.cos_t * p.cos_t);
+  return {int(std::floor(p.c.y - ry - 0.5)), int(std::ceil(p.c.y + ry - 0.5))};
+}
 
 // Each primitive a flat solid at its depth into out.front (index + 1) and out.depth, behind
 // what is marked kWoodFront (the lower index wins a tie, whatever the threads).

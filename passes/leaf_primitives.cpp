@@ -114,16 +114,19 @@ bool make_primitive(const LeafPiece& piece, const glm::mat4& view, const glm::ma
 // of every primitive.
 void paint_wood(const SeenWood& seen, double f, LeafLayer& out) {
   if (seen.mask.empty()) return;
-  for (int y = 0; y < seen.mask.rows; ++y)
+  for (int y = 0; y < seen.mask.rows; ++y) {
+    const uint8_t* wood = seen.mask.ptr<uint8_t>(y);
+    const float* z = seen.depth.ptr<float>(y);
+    const int v = std::min(out.front.rows - 1, int(y / f));
+    int* front = out.front.ptr<int>(v);
+    float* depth = out.depth.ptr<float>(v);
     for (int x = 0; x < seen.mask.cols; ++x) {
-      if (!seen.mask.at<uint8_t>(y, x)) continue;
-      const float z = seen.depth.at<float>(y, x);
-      const int u = std::min(out.front.cols - 1, int(x / f)),
-                v = std::min(out.front.rows - 1, int(y / f));
-      out.front.at<int>(v, u) = kWoodFront;
-      float& d = out.depth.at<float>(v, u);
-      d = std::min(d, z);
+      if (!wood[x]) continue;
+      const int u = std::min(out.front.cols - 1, int(x / f));
+      front[u] = kWoodFront;
+      depth[u] = std::min(depth[u], z[x]);
     }
+  }
 }
 
 // The pieces merged into clumps of one leaf cluster within one cell of `cell` scene units (a
@@ -197,6 +200,11 @@ std::shared_ptr<const std::vector<LeafPiece>> kept_clumps(const LeafPieces& piec
   return memo.clumps;
 }
 
+// The frame's size: the colour's, or the camera's before there is one.
+cv::Size frame_size(const LeafImages& in) {
+  return in.color.empty() ? cv::Size(in.camera.width, in.camera.height) : in.color.size();
+}
+
 std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& p, double f,
                                         float least, double cell) {
   std::vector<Primitive> prims;
@@ -209,8 +217,8 @@ std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& 
   std::vector<uint8_t> made(merged.size(), 0);
   cv::parallel_for_(cv::Range(0, int(merged.size())), [&](const cv::Range& r) {
     for (int i = r.start; i < r.end; ++i)
-      made[size_t(i)] = make_primitive(merged[size_t(i)], in.camera.view, view_proj,
-                                       in.color.size(), f, h, p.shape, least, all[size_t(i)]);
+      made[size_t(i)] = make_primitive(merged[size_t(i)], in.camera.view, view_proj, frame_size(in),
+                                       f, h, p.shape, least, all[size_t(i)]);
   });
   prims.reserve(merged.size());
   for (size_t i = 0; i < all.size(); ++i)
@@ -218,32 +226,36 @@ std::vector<Primitive> frame_primitives(const LeafImages& in, const LeafParams& 
   return prims;
 }
 
-// The light reaching each primitive: the shaded colour's darkness around its centre (Luft's
-// realigned normals and ka) and the key light's share reaching its centre through the crown
-// (npr/sample_shadow.h), as one darkness; each primitive's rank among the plant's, weighted by
-// the pixels it shows; the layer's rank image, clusters, centres and depth range.
-void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
-                     std::vector<Primitive>& prims, LeafLayer& layer) {
-  const cv::Size work = layer.front.size();
-  const ToneRank tone = tone_rank(in.color, work, sigma, false);
-  layer.darkness = tone.darkness;
+// The key light's share reaching each primitive's centre through the crown
+// (npr/sample_shadow.h), weighted by leaves.shadow: 1 = all of it.
+void light_primitives(const LeafImages& in, const LeafParams& p, LeafFrame& frame) {
   SampleShadow shadow;
   if (in.light.on && in.samples && p.shadow > 0.0f && !in.light.sphere.empty())
     shadow = sample_shadow_map(*in.samples, in.light.sphere, in.light.toward, in.light.point,
                                kShadowMapSize, p.shadow_depth);
-  std::vector<double> shown(prims.size(), 0.0);
-  for (int y = 0; y < work.height; ++y)
-    for (int x = 0; x < work.width; ++x)
-      if (const int f = layer.front.at<int>(y, x); f > 0) shown[size_t(f - 1)] += 1.0;
-  std::vector<std::pair<float, size_t>> dark(prims.size());
+  const std::vector<Primitive>& prims = frame.prims;
+  frame.light.assign(prims.size(), 1.0f);
   cv::parallel_for_(cv::Range(0, int(prims.size())), [&](const cv::Range& r) {
-    for (int k = r.start; k < r.end; ++k) {
-      const size_t i = size_t(k);
-      const float colour = tone.empty() ? 0.0f : tone.dark_near(prims[i].c);
-      const float light = 1.0f - p.shadow * (1.0f - light_reaching(shadow, prims[i].world));
-      dark[i] = {1.0f - (1.0f - colour) * light, i};
-    }
+    for (int i = r.start; i < r.end; ++i)
+      frame.light[size_t(i)] =
+          1.0f - p.shadow * (1.0f - light_reaching(shadow, prims[size_t(i)].world));
   });
+}
+
+// Each primitive's rank among the plant's by its darkness, weighted by the pixels it shows; the
+// layer's rank image, clusters, centres and depth range.
+void rank_primitives(const std::vector<float>& darkness, std::vector<Primitive>& prims,
+                     LeafLayer& layer) {
+  const cv::Size work = layer.front.size();
+  std::vector<double> shown(prims.size(), 0.0);
+  for (int y = 0; y < work.height; ++y) {
+    const int* front = layer.front.ptr<int>(y);
+    for (int x = 0; x < work.width; ++x)
+      if (front[x] > 0) shown[size_t(front[x] - 1)] += 1.0;
+  }
+  std::vector<std::pair<float, size_t>> dark(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i)
+    dark[i] = {darkness[i], i};
   double total = 0.0;
   for (size_t i = 0; i < prims.size(); ++i)
     total += shown[i];
@@ -254,10 +266,12 @@ void rank_primitives(const LeafImages& in, const LeafParams& p, double sigma,
     below += shown[i];
   }
   layer.rank = cv::Mat(work, CV_32FC1, cv::Scalar(0));
-  for (int y = 0; y < work.height; ++y)
+  for (int y = 0; y < work.height; ++y) {
+    const int* front = layer.front.ptr<int>(y);
+    float* rank = layer.rank.ptr<float>(y);
     for (int x = 0; x < work.width; ++x)
-      if (const int f = layer.front.at<int>(y, x); f > 0)
-        layer.rank.at<float>(y, x) = prims[size_t(f - 1)].rank;
+      if (front[x] > 0) rank[x] = prims[size_t(front[x] - 1)].rank;
+  }
   layer.near = prims.empty() ? 0.0f : std::numeric_limits<float>::max();
   layer.far = 0.0f;
   for (const Primitive& q : prims) {
@@ -295,8 +309,13 @@ void plant_extents(const LeafLayer& layer, std::vector<Primitive>& prims) {
 
 void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out) {
   const cv::Size size = out.front.size();
+  // Each band of rows visits every primitive: their rows, found once, pass over the others.
+  std::vector<std::pair<int, int>> rows(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i)
+    rows[i] = ellipse_rows(prims[i], 1.0f);
   for_bands(size.height, [&](int y0, int y1) {
-    for (size_t i = 0; i < prims.size(); ++i)
+    for (size_t i = 0; i < prims.size(); ++i) {
+      if (rows[i].second < y0 || rows[i].first >= y1) continue;
       ellipse_spans(prims[i], 1.0f, size, y0, y1, [&](int y, int x0, int x1) {
         int* front = out.front.ptr<int>(y);
         float* depth = out.depth.ptr<float>(y);
@@ -306,6 +325,7 @@ void paint_primitives(const std::vector<Primitive>& prims, LeafLayer& out) {
             front[x] = int(i + 1);
           }
       });
+    }
   });
 }
 
@@ -316,26 +336,61 @@ std::vector<Primitive> project_primitives(const LeafImages& in, LeafShape shape,
   return frame_primitives(in, p, f, least, cell);
 }
 
-LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
-                     const EdgeParams& edges) {
-  const cv::Size size = in.color.size();
-  const double scale = reference_scale(size);
-  const double detail = lines.detail * scale;  // px
-  const double least_px = p.size * detail;     // the smallest primitive's diameter, px
-  LeafLayer layer;
-  layer.factor = std::max(1.0, least_px / kPrimitivePx);
-  const cv::Size work(std::max(1, int(std::lround(size.width / layer.factor))),
-                      std::max(1, int(std::lround(size.height / layer.factor))));
-  layer.drawing.size = size;
-  layer.drawing.color = edges.color;
-  layer.front = cv::Mat(work, CV_32SC1, cv::Scalar(0));
-  layer.depth = cv::Mat(work, CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
-  paint_wood(in.wood, layer.factor, layer);
-  std::vector<Primitive> prims =
-      frame_primitives(in, p, layer.factor, float(std::max(0.5, 0.5 * least_px / layer.factor)),
+LeafFrame leaf_frame(const LeafImages& in, const LeafParams& p, const InkLineParams& lines) {
+  const cv::Size size = frame_size(in);
+  const double detail = lines.detail * reference_scale(size);  // px
+  const double least_px = p.size * detail;  // the smallest primitive's diameter, px
+  LeafFrame frame;
+  frame.size = size;
+  frame.factor = std::max(1.0, least_px / kPrimitivePx);
+  frame.work = cv::Size(std::max(1, int(std::lround(size.width / frame.factor))),
+                        std::max(1, int(std::lround(size.height / frame.factor))));
+  frame.sigma = std::max(1.0, detail / frame.factor);
+  frame.prims =
+      frame_primitives(in, p, frame.factor, float(std::max(0.5, 0.5 * least_px / frame.factor)),
                        least_px * in.units_per_px);
+  light_primitives(in, p, frame);
+  return frame;
+}
+
+LeafTone leaf_tone(const LeafFrame& frame, const cv::Mat& color) {
+  SYLVA_CHECK(color.size() == frame.size, "leaf tone: the colour is not the frame's size");
+  // The shaded colour's darkness around each primitive's centre (Luft's realigned normals and
+  // ka), darkened where the key light does not reach.
+  const ToneRank tone = tone_rank(color, frame.work, frame.sigma, false);
+  LeafTone out;
+  out.darkness = tone.darkness;
+  out.dark.resize(frame.prims.size());
+  for (size_t i = 0; i < frame.prims.size(); ++i) {
+    const float colour = tone.empty() ? 0.0f : tone.dark_near(frame.prims[i].c);
+    out.dark[i] = 1.0f - (1.0f - colour) * frame.light[i];
+  }
+  return out;
+}
+
+LeafLayer wood_layer(const LeafFrame& frame, const LeafTone& tone, const SeenWood& wood,
+                     const EdgeParams& edges) {
+  LeafLayer layer;
+  layer.factor = frame.factor;
+  layer.drawing.size = frame.size;
+  layer.drawing.color = edges.color;
+  layer.front = cv::Mat(frame.work, CV_32SC1, cv::Scalar(0));
+  layer.depth = cv::Mat(frame.work, CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
+  layer.darkness = tone.darkness;
+  paint_wood(wood, layer.factor, layer);
+  return layer;
+}
+
+LeafLayer leaf_layer(const LeafFrame& frame, const LeafTone& tone, const LeafLayer& wood,
+                     const LeafParams& p, const InkLineParams& lines, const EdgeParams& edges) {
+  const double scale = reference_scale(frame.size);
+  const double detail = lines.detail * scale;  // px
+  LeafLayer layer = wood;
+  layer.front = wood.front.clone();
+  layer.depth = wood.depth.clone();
+  std::vector<Primitive> prims = frame.prims;
   paint_primitives(prims, layer);
-  rank_primitives(in, p, std::max(1.0, detail / layer.factor), prims, layer);
+  rank_primitives(tone.dark, prims, layer);
   plant_extents(layer, prims);
   ArcStyle s;
   s.step = p.depth_step * float(std::max(lines.detail, 0.5f) / 10.0f);
@@ -362,28 +417,61 @@ LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLinePar
   return layer;
 }
 
-Handle<LeafLayer> add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
-                                      const InkLineParams& lines, const EdgeParams& edges) {
-  SYLVA_CHECK(in.pieces.valid() && in.color.valid() && in.depth.valid(),
-              "the leaf layer needs the leaf pieces, color and depth resources");
-  std::vector<ResourceRef> reads = {in.pieces, in.color, in.depth};
-  if (in.wood.valid()) reads.push_back(in.wood);
+LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
+                     const EdgeParams& edges) {
+  const LeafFrame frame = leaf_frame(in, p, lines);
+  const LeafTone tone = leaf_tone(frame, in.color);
+  return leaf_layer(frame, tone, wood_layer(frame, tone, in.wood, edges), p, lines, edges);
+}
+
+LeafLayers add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
+                               const InkLineParams& lines, const EdgeParams& edges) {
+  SYLVA_CHECK(in.pieces.valid() && in.color.valid(),
+              "the leaf layer needs the leaf pieces and color resources");
+  // The primitives and their light need no raster: they are made while it draws.
+  std::vector<ResourceRef> reads = {in.pieces};
   if (in.samples.valid()) reads.push_back(in.samples);
-  const auto out = g.resource<LeafLayer>("leaf-layer");
+  const auto primitives = g.resource<LeafFrame>("leaf-primitives");
   g.add_pass(
-      "leaf-layer", reads, {out},
+      "leaf-primitives", reads, {primitives},
       [=](PassContext& ctx) {
         LeafImages images;
         images.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(in.pieces);
         images.camera = in.camera;
         images.units_per_px = in.units_per_px;
-        images.color = ctx.read<cv::Mat>(in.color);
-        images.depth = ctx.read<cv::Mat>(in.depth);
-        if (in.wood.valid()) images.wood = ctx.read<SeenWood>(in.wood);
         if (in.samples.valid())
           images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
         images.light = in.light;
-        ctx.write(out, leaf_layer(images, p, lines, edges));
+        ctx.write(primitives, leaf_frame(images, p, lines));
+      },
+      RenderGraph::Threads::Any);
+  // Their tone, beside the seen wood.
+  const auto tone = g.resource<LeafTone>("leaf-tone");
+  g.add_pass(
+      "leaf-tone", {primitives, in.color}, {tone},
+      [=](PassContext& ctx) {
+        ctx.write(tone, leaf_tone(ctx.read<LeafFrame>(primitives), ctx.read<cv::Mat>(in.color)));
+      },
+      RenderGraph::Threads::Any);
+  std::vector<ResourceRef> wood_reads = {primitives, tone};
+  if (in.wood.valid()) wood_reads.push_back(in.wood);
+  LeafLayers out;
+  out.wood = g.resource<LeafLayer>("wood-layer");
+  out.layer = g.resource<LeafLayer>("leaf-layer");
+  g.add_pass(
+      "wood-layer", wood_reads, {out.wood},
+      [=](PassContext& ctx) {
+        const SeenWood none;
+        const SeenWood& wood = in.wood.valid() ? ctx.read<SeenWood>(in.wood) : none;
+        ctx.write(out.wood, wood_layer(ctx.read<LeafFrame>(primitives), ctx.read<LeafTone>(tone),
+                                       wood, edges));
+      },
+      RenderGraph::Threads::Any);
+  g.add_pass(
+      "leaf-layer", {primitives, tone, out.wood}, {out.layer},
+      [=](PassContext& ctx) {
+        ctx.write(out.layer, leaf_layer(ctx.read<LeafFrame>(primitives), ctx.read<LeafTone>(tone),
+                                        ctx.read<LeafLayer>(out.wood), p, lines, edges));
       },
       RenderGraph::Threads::Any);
   return out;

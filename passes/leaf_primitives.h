@@ -28,9 +28,11 @@
 // primitive is at least kPrimitivePx across, so every image size draws the same picture; the
 // outlines are the ellipses' own arcs (no pixel staircase).
 //
-// Reads (render graph): "leaf-pieces", "color" (CV_8UC4, alpha = coverage: the tone), "depth"
-// (CV_32FC1 linear view depth), "seen-wood" and "surface-samples" (the key light's shadow map).
-// Writes "leaf-layer", a LeafLayer.
+// Reads (render graph): "leaf-pieces", "color" (CV_8UC4, alpha = coverage: the tone),
+// "seen-wood" and "surface-samples" (the key light's shadow map).
+// Writes "leaf-primitives" (the primitives and the key light reaching them, which need no
+// raster), "leaf-tone", "leaf-layer" (a LeafLayer) and "wood-layer" (the same with the wood
+// alone, for hatching the wood beside the foliage's painting).
 #pragma once
 
 #include <cstdint>
@@ -126,8 +128,44 @@ struct LeafImages {
   KeyLight light;
 };
 
-// lines: ink.detail, lines.foliage (the interior arcs) and lines.silhouette (the arcs against
-// the paper); edges: edges.min_width.
+struct Primitive;  // passes/leaf_outlines.h
+
+// One frame's primitives and the key light reaching them: made from the scene and the camera
+// alone, before the raster.
+struct LeafFrame {
+  cv::Size size, work;           // the output and the working resolution, px
+  double factor = 1.0;           // output px per working px (>= 1)
+  double sigma = 1.0;            // working px: the tone's smoothing (ink.detail)
+  std::vector<Primitive> prims;  // those landing in or near the frame (rank and extent not set)
+  // Per primitive: the key light's share reaching its centre, weighted by leaves.shadow (1 =
+  // all of it, or no key light).
+  std::vector<float> light;
+};
+
+// The primitives' tone, from the raster's colour.
+struct LeafTone {
+  std::vector<float> dark;  // per primitive, its darkness in [0, 1] (colour and shadow)
+  cv::Mat darkness;         // LeafLayer::darkness
+};
+
+// The frame's size is the colour's, or without one the camera's. lines: ink.detail.
+LeafFrame leaf_frame(const LeafImages& in, const LeafParams& p, const InkLineParams& lines);
+
+// color: the raster's (CV_8UC4) at frame.size.
+LeafTone leaf_tone(const LeafFrame& frame, const cv::Mat& color);
+
+// The layer with only the wood painted (front kWoodFront where `wood` is seen, 0 elsewhere; no
+// primitives, no drawing): all that the wood's hatching reads, before the foliage is painted.
+LeafLayer wood_layer(const LeafFrame& frame, const LeafTone& tone, const SeenWood& wood,
+                     const EdgeParams& edges);
+
+// The layer: `frame`'s primitives painted behind `wood` (the wood_layer of the same frame and
+// tone), ranked by `tone`, and outlined. lines: ink.detail, lines.foliage (the interior arcs) and
+// lines.silhouette (the arcs against the paper); edges: edges.min_width.
+LeafLayer leaf_layer(const LeafFrame& frame, const LeafTone& tone, const LeafLayer& wood,
+                     const LeafParams& p, const InkLineParams& lines, const EdgeParams& edges);
+
+// leaf_layer of leaf_frame(in, p, lines), its tone from in.color, and in.wood.
 LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
                      const EdgeParams& edges);
 
@@ -141,9 +179,15 @@ struct LeafResources {
   KeyLight light;
 };
 
-// Adds the pass "leaf-layer" and returns its output.
-Handle<LeafLayer> add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
-                                      const InkLineParams& lines, const EdgeParams& edges);
+struct LeafLayers {
+  Handle<LeafLayer> layer;  // "leaf-layer"
+  Handle<LeafLayer> wood;   // "wood-layer": wood_layer
+};
+
+// Adds the passes "leaf-primitives" (a LeafFrame, made while the raster draws), "leaf-tone" (a
+// LeafTone), "wood-layer" and "leaf-layer" (painted over a copy of the wood layer).
+LeafLayers add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
+                               const InkLineParams& lines, const EdgeParams& edges);
 
 // Adds the pass "leaf-strokes": the layer's drawing.
 Handle<StrokeDrawing> add_leaf_strokes_pass(RenderGraph& g, Handle<LeafLayer> layer);

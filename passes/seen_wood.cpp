@@ -117,14 +117,9 @@ cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size,
 
 // The plant's depth extent in the raster (the covered pixels' nearest and farthest).
 float depth_extent(const cv::Mat& depth) {
-  float lo = std::numeric_limits<float>::max(), hi = 0.0f;
-  for (int y = 0; y < depth.rows; ++y)
-    for (int x = 0; x < depth.cols; ++x)
-      if (const float z = depth.at<float>(y, x); z > 0.0f) {
-        lo = std::min(lo, z);
-        hi = std::max(hi, z);
-      }
-  return hi > lo ? hi - lo : 0.0f;
+  double lo = 0.0, hi = 0.0;
+  cv::minMaxLoc(depth, &lo, &hi, nullptr, nullptr, depth > 0.0f);
+  return hi > lo ? float(hi - lo) : 0.0f;
 }
 
 // Without samples: gaps up to `gap` px that the plant fills, closed; their depth the farthest
@@ -142,6 +137,12 @@ void close_gaps(const cv::Mat& depth, double gap, SeenWood& w) {
 
 }  // namespace
 
+WoodSplat wood_splat(const SurfaceSamples& s, const Camera& camera, uint32_t wood) {
+  if (wood == 0 || s.clusters.size() != s.size() || camera.width < 1 || camera.height < 1)
+    return {};
+  return {splat_wood(s, camera, {camera.width, camera.height}, wood)};
+}
+
 SeenWood seen_wood(const WoodImages& in, uint32_t wood, double detail) {
   SeenWood w;
   w.depth = in.depth;
@@ -155,17 +156,23 @@ SeenWood seen_wood(const WoodImages& in, uint32_t wood, double detail) {
     close_gaps(in.depth, std::max(2.0, 0.3 * detail * reference_scale(in.depth.size())), w);
     return w;
   }
-  const cv::Mat z = splat_wood(*in.samples, in.camera, in.depth.size(), wood);
+  // The splat made beforehand, unless there is none of the raster's size.
+  const cv::Mat z = in.splat.z.size() == in.depth.size()
+                        ? in.splat.z
+                        : splat_wood(*in.samples, in.camera, in.depth.size(), wood);
   const float cover = w.cover;
   for_bands(in.depth.rows, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+      const float *shown = in.depth.ptr<float>(y), *under = z.ptr<float>(y);
+      uint8_t* mask = w.mask.ptr<uint8_t>(y);
+      float* depth = w.depth.ptr<float>(y);
       for (int x = 0; x < in.depth.cols; ++x) {
-        const float shown = in.depth.at<float>(y, x), under = z.at<float>(y, x);
-        if (w.mask.at<uint8_t>(y, x) || !(shown > 0.0f) || !std::isfinite(under)) continue;
-        if (shown < under - cover) continue;  // foliage clearly in front
-        w.mask.at<uint8_t>(y, x) = 255;
-        w.depth.at<float>(y, x) = under;
+        if (mask[x] || !(shown[x] > 0.0f) || !std::isfinite(under[x])) continue;
+        if (shown[x] < under[x] - cover) continue;  // foliage clearly in front
+        mask[x] = 255;
+        depth[x] = under[x];
       }
+    }
   });
   return w;
 }
@@ -174,7 +181,19 @@ Handle<SeenWood> add_seen_wood_pass(RenderGraph& g, const WoodResources& in, uin
                                     double detail) {
   SYLVA_CHECK(in.id.valid() && in.depth.valid(), "seen wood needs the id and depth resources");
   std::vector<ResourceRef> reads = {in.id, in.depth};
-  if (in.samples.valid()) reads.push_back(in.samples);
+  Handle<WoodSplat> splat;
+  if (in.samples.valid()) {
+    splat = g.resource<WoodSplat>("wood-splat");
+    g.add_pass(
+        "wood-splat", {in.samples}, {splat},
+        [=](PassContext& ctx) {
+          const auto& samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+          ctx.write(splat, samples ? wood_splat(*samples, in.camera, wood) : WoodSplat{});
+        },
+        RenderGraph::Threads::Any);
+    reads.push_back(in.samples);
+    reads.push_back(splat);
+  }
   const auto out = g.resource<SeenWood>("seen-wood");
   g.add_pass(
       "seen-wood", reads, {out},
@@ -182,8 +201,10 @@ Handle<SeenWood> add_seen_wood_pass(RenderGraph& g, const WoodResources& in, uin
         WoodImages images;
         images.id = ctx.read<cv::Mat>(in.id);
         images.depth = ctx.read<cv::Mat>(in.depth);
-        if (in.samples.valid())
+        if (in.samples.valid()) {
           images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
+          images.splat = ctx.read<WoodSplat>(splat);
+        }
         images.camera = in.camera;
         ctx.write(out, seen_wood(images, wood, detail));
       },

@@ -11,7 +11,8 @@
 // Without samples, gaps up to 0.3 x ink.detail across are closed instead.
 //
 // Reads (render graph): "id" (CV_32SC1 cluster ids), "depth" (CV_32FC1 linear view depth, 0 =
-// background) and, when given, "surface-samples". Writes "seen-wood", a SeenWood.
+// background) and, when given, "surface-samples" (splatted by the pass "wood-splat", which does
+// not wait for the raster). Writes "seen-wood", a SeenWood.
 #pragma once
 
 #include <cstdint>
@@ -36,10 +37,19 @@ struct SeenWood {
   float cover = 0.0f;
 };
 
+// The wood's surface samples splatted into a z-buffer of the camera's frame: each a disc of about
+// its spacing, the nearest view depth kept; +inf where none (CV_32FC1). It needs no raster, so
+// it is made while the raster draws.
+struct WoodSplat {
+  cv::Mat z;  // empty: none made
+};
+WoodSplat wood_splat(const SurfaceSamples& s, const Camera& camera, uint32_t wood);
+
 struct WoodImages {
   cv::Mat id, depth;                              // the raster's
   std::shared_ptr<const SurfaceSamples> samples;  // or null
   Camera camera;                                  // the frame's
+  WoodSplat splat;  // wood_splat of the samples made beforehand, or empty: made here
 };
 
 // wood: the trunk and branches' cluster (0 = none: an empty SeenWood); detail: ink.detail, px
@@ -52,7 +62,7 @@ struct WoodResources {
   Camera camera;
 };
 
-// Adds the pass "seen-wood" and returns its output.
+// Adds the passes "wood-splat" (with samples) and "seen-wood"; returns the seen wood.
 Handle<SeenWood> add_seen_wood_pass(RenderGraph& g, const WoodResources& in, uint32_t wood,
                                     double detail);
 

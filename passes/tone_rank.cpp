@@ -9,30 +9,57 @@
 
 namespace sylva {
 
+namespace {
+
+// 1 - the Rec. 709 luma of a BGRA pixel's sRGB-encoded values: the tone as the eye reads it.
+float darkness_of(const cv::Vec4b& c) {
+  const float luma = (0.0722f * c[0] + 0.7152f * c[1] + 0.2126f * c[2]) / 255.0f;
+  return std::clamp(1.0f - luma, 0.0f, 1.0f);
+}
+
+}  // namespace
+
 cv::Mat tone_darkness(const cv::Mat& color) {
   expect_image(color, CV_8UC4, {}, "color");
   cv::Mat dark(color.size(), CV_32FC1, cv::Scalar(0));
   for_bands(color.rows, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < color.cols; ++x) {
-        const cv::Vec4b c = color.at<cv::Vec4b>(y, x);
-        if (c[3] < 128) continue;
-        // Rec. 709 luma of the sRGB-encoded values: the tone as the eye reads it.
-        const float luma = (0.0722f * c[0] + 0.7152f * c[1] + 0.2126f * c[2]) / 255.0f;
-        dark.at<float>(y, x) = std::clamp(1.0f - luma, 0.0f, 1.0f);
-      }
+    for (int y = y0; y < y1; ++y) {
+      const cv::Vec4b* c = color.ptr<cv::Vec4b>(y);
+      float* d = dark.ptr<float>(y);
+      for (int x = 0; x < color.cols; ++x)
+        if (c[x][3] >= 128) d[x] = darkness_of(c[x]);
+    }
   });
   return dark;
 }
 
+namespace {
+
+// tone_darkness and the plant's coverage (1 where alpha >= 128) as the two channels of one
+// CV_32FC2 image, made in one pass.
+cv::Mat darkness_and_cover(const cv::Mat& color) {
+  expect_image(color, CV_8UC4, {}, "color");
+  cv::Mat out(color.size(), CV_32FC2);
+  for_bands(color.rows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      const cv::Vec4b* c = color.ptr<cv::Vec4b>(y);
+      cv::Vec2f* o = out.ptr<cv::Vec2f>(y);
+      for (int x = 0; x < color.cols; ++x)
+        o[x] = c[x][3] < 128 ? cv::Vec2f(0.0f, 0.0f) : cv::Vec2f(darkness_of(c[x]), 1.0f);
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
 ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranked) {
-  cv::Mat dark = tone_darkness(color), cover, alpha;
-  cv::extractChannel(color, alpha, 3);
-  cv::Mat(alpha >= 128).convertTo(cover, CV_32F, 1.0 / 255.0);
-  if (size != color.size()) {
-    cv::resize(dark, dark, size, 0, 0, cv::INTER_AREA);
-    cv::resize(cover, cover, size, 0, 0, cv::INTER_AREA);
-  }
+  cv::Mat both = darkness_and_cover(color);
+  // Area-averaged to the working size, both channels at once.
+  if (size != color.size()) cv::resize(both, both, size, 0, 0, cv::INTER_AREA);
+  cv::Mat channels[2];
+  cv::split(both, channels);
+  const cv::Mat &dark = channels[0], &cover = channels[1];
   ToneRank t;
   t.plant = cover >= 0.5f;
   if (cv::countNonZero(t.plant) == 0) return {};

@@ -99,7 +99,7 @@ Handle<StrokeDrawing> over(RenderGraph& graph, Handle<StrokeDrawing> a, Handle<S
 
 struct LineDrawing {
   Handle<StrokeDrawing> strokes;
-  Handle<LeafLayer> leaves;  // none without foliage primitives
+  LeafLayers leaves;  // none without foliage primitives
   // What `strokes` is made of, rasterised part by part (add_stroke_parts_raster_pass).
   std::vector<StrokePart> parts;
 };
@@ -131,7 +131,7 @@ LineDrawing add_line_drawing(RenderGraph& graph, const GBufferHandles& gbuffer,
   wr.camera = context.camera;
   const Handle<SeenWood> seen = add_seen_wood_pass(graph, wr, context.branch_cluster, lines.detail);
   Handle<StrokeDrawing> leaves;
-  Handle<LeafLayer> layer;
+  LeafLayers layer;
   if (lines.foliage.on && context.leaf_pieces.valid()) {
     LeafResources lr;
     lr.pieces = context.leaf_pieces;
@@ -143,7 +143,7 @@ LineDrawing add_line_drawing(RenderGraph& graph, const GBufferHandles& gbuffer,
     lr.samples = context.surface_samples;
     lr.light = key_light_of(context);
     layer = add_leaf_layer_pass(graph, lr, params.leaves, lines, params.edges);
-    leaves = add_leaf_strokes_pass(graph, layer);
+    leaves = add_leaf_strokes_pass(graph, layer.layer);
   }
   const Handle<StrokeDrawing> wood = add_wood_lines_pass(graph, seen, lines, params.edges);
   // The leaves under the wood, the other lines over both.
@@ -160,12 +160,13 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
   Handle<StrokeDrawing> strokes = drawing.strokes;
   std::vector<StrokePart> parts = drawing.parts;
   const bool hatch = params.pen.tone == PenTone::Hatching;
-  if (drawing.leaves.valid() && (hatch || params.lines.wood_shade)) {
+  if (drawing.leaves.layer.valid() && (hatch || params.lines.wood_shade)) {
     validate_pen_params(params.pen);
-    // pen: the crown and the wood; ink: the wood's shadow side only (lines.wood_shade).
+    // pen: the crown and the wood; ink: the wood's shadow side only (lines.wood_shade), from the
+    // wood's layer, so it does not wait for the foliage's painting.
     const Handle<StrokeDrawing> tone = add_hatch_groups_pass(
-        graph, drawing.leaves, gbuffer.normal, gbuffer.color, params.pen, params.lines.detail,
-        {.foliage = hatch, .wood = params.lines.wood_shade});
+        graph, hatch ? drawing.leaves.layer : drawing.leaves.wood, gbuffer.normal, gbuffer.color,
+        params.pen, params.lines.detail, {.foliage = hatch, .wood = params.lines.wood_shade});
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
     parts.push_back({"tone", tone});
   } else if (params.pen.enabled()) {
@@ -191,7 +192,8 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
   ink.line_color = params.edges.color;
   // The colour target is drawn on a transparent clear for ink (Style::configure), so its
   // alpha is the coverage the composite needs, and its colour the wash.
-  return {add_ink_composite_pass(graph, lines, gbuffer.color, ink), strokes, lines};
+  const cv::Size frame(context.camera.width, context.camera.height);
+  return {add_ink_composite_pass(graph, lines, gbuffer.color, ink, frame), strokes, lines};
 }
 
 StyleOutput build_watercolor(RenderGraph& graph, const GBufferHandles& gbuffer,

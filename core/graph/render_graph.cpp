@@ -246,12 +246,16 @@ void RenderGraph::execute(const std::function<void(const std::string&)>& after_p
   std::vector<InFlight> flying;
   while (s.left > 0) {
     check_interrupt();  // a long render stops between passes after SIGINT (core/interrupt.h)
-    // The first ready pass that can start: one for the calling thread at once (beside the
-    // passes in flight, which only read what it cannot change), one for any thread while fewer
-    // than kMostInFlight are in flight.
-    const auto next = std::find_if(s.ready.begin(), s.ready.end(), [&](int p) {
-      return m_passes[size_t(p)].threads == Threads::Main || flying.size() < kMostInFlight;
+    // The first ready pass that can start: one for any thread while fewer than kMostInFlight
+    // are in flight, else one for the calling thread at once (beside the passes in flight, which
+    // only read what it cannot change). Passes in flight go first, so the work that does not
+    // wait for a calling-thread pass (the raster) runs while it does.
+    auto next = std::find_if(s.ready.begin(), s.ready.end(), [&](int p) {
+      return m_passes[size_t(p)].threads == Threads::Any && flying.size() < kMostInFlight;
     });
+    if (next == s.ready.end())
+      next = std::find_if(s.ready.begin(), s.ready.end(),
+                          [&](int p) { return m_passes[size_t(p)].threads == Threads::Main; });
     if (next != s.ready.end()) {
       const int pass = *next;
       s.ready.erase(next);

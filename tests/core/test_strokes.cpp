@@ -1,10 +1,14 @@
 // Strokes (core/strokes.h) and their raster (core/stroke_render.h): a stroke's outline is as
 // wide as the stroke with round ends, a closed stroke's is a ring, a dot is a circle; the
-// raster covers a line's width, honours the opacity and gives the same bytes twice.
+// raster covers a line's width, honours the opacity and gives the same bytes twice; the lines it
+// covers itself agree with cairo's stroking of them (the PDF's routine).
+#include <cairo.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "core/stroke_render.h"
 #include "core/strokes.h"
@@ -86,6 +90,70 @@ TEST(StrokeRaster, ALineCoversItsWidthAtItsOpacity) {
   EXPECT_EQ(cv::countNonZero(a != b), 0);
   EXPECT_GT(a.at<float>(26, 30), 0.9f);
   EXPECT_GT(a.at<float>(8, 50), a.at<float>(9, 12) - 1e-6f);
+}
+
+// The drawing painted by cairo alone (paint_strokes, as the PDF is): coverage in [0, 1].
+cv::Mat cairo_coverage(const StrokeDrawing& d) {
+  const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_A8, d.size.width);
+  cv::Mat a8(d.size.height, stride, CV_8UC1, cv::Scalar(0));
+  cairo_surface_t* surface = cairo_image_surface_create_for_data(
+      a8.data, CAIRO_FORMAT_A8, d.size.width, d.size.height, stride);
+  cairo_t* cr = cairo_create(surface);
+  paint_strokes(cr, d);
+  cairo_destroy(cr);
+  cairo_surface_flush(surface);
+  cairo_surface_destroy(surface);
+  cv::Mat coverage;
+  a8.colRange(0, d.size.width).convertTo(coverage, CV_32F, 1.0 / 255.0);
+  return coverage;
+}
+
+TEST(StrokeRaster, LinesAreCoveredAsCairoStrokesThem) {
+  // Lines of one width each, 0.25 to 4 px, open and closed, at every angle, some half opaque,
+  // crossing each other: rasterize_strokes covers them itself, cairo strokes them exactly.
+  StrokeDrawing d;
+  d.size = {200, 150};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> x(5.0f, 195.0f), y(5.0f, 145.0f), w(0.25f, 4.0f);
+  for (int i = 0; i < 80; ++i) {
+    Stroke s;
+    s.width = w(rng);
+    s.opacity = i % 3 == 0 ? 0.5f : 1.0f;
+    s.closed = i % 7 == 0;
+    glm::vec2 at(x(rng), y(rng));
+    for (int k = 0; k < 2 + i % 5; ++k) {
+      s.points.push_back(at);
+      at += glm::vec2(std::cos(0.9f * float(k + i)), std::sin(0.9f * float(k + i))) * 9.0f;
+    }
+    d.strokes.push_back(s);
+  }
+  const cv::Mat ours = rasterize_strokes(d), theirs = cairo_coverage(d);
+  const double ink = cv::sum(theirs)[0];
+  EXPECT_NEAR(cv::sum(ours)[0], ink, 0.01 * ink);
+  cv::Mat diff;
+  cv::absdiff(ours, theirs, diff);
+  const cv::Mat inked = (ours > 0.02f) | (theirs > 0.02f);
+  EXPECT_LT(cv::mean(diff, inked)[0], 0.03);
+  EXPECT_LT(cv::countNonZero(diff > 0.25f), 0.005 * cv::countNonZero(inked));
+  // A thin line's coverage is its width: a 0.5 px line along a row covers half a pixel.
+  d.strokes = {line({10, 20.5f}, {60, 20.5f}, 0.5f)};
+  EXPECT_NEAR(rasterize_strokes(d).at<float>(20, 30), 0.5f, 1e-4f);
+}
+
+TEST(StrokeRaster, ALineWithANonFinitePointOrTooMuchOpacityStaysInRange) {
+  StrokeDrawing d;
+  d.size = {64, 32};
+  Stroke bad = line({8, 16}, {56, 16}, 2.0f);
+  bad.points.push_back({std::numeric_limits<float>::quiet_NaN(), 3.0f});
+  d.strokes = {bad};
+  EXPECT_EQ(cv::countNonZero(rasterize_strokes(d)), 0);  // not drawn
+  Stroke strong = line({8, 16}, {56, 16}, 4.0f);
+  strong.opacity = 3.0f;
+  d.strokes = {strong, strong};
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(rasterize_strokes(d), &lo, &hi);
+  EXPECT_GE(lo, 0.0);
+  EXPECT_LE(hi, 1.0);
 }
 
 TEST(StrokeDrawing, CountsAndAppendsByClass) {

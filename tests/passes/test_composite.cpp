@@ -164,7 +164,7 @@ TEST(InkComposite, GraphProducesTheFinalImage) {
   g.add_pass("write-color", {}, {color}, [&](PassContext& c) { c.write(color, in.color); });
   InkParams p;
   p.paper.grain = 0.3f;
-  const auto out = add_ink_composite_pass(g, lines, color, p);
+  const auto out = add_ink_composite_pass(g, lines, color, p, in.lines.size());
   EXPECT_EQ(g.resource_name(out), "ink");
   g.present(out);
   g.execute();

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
+#include "core/gl/camera.h"
 #include "core/stroke_render.h"
 #include "passes/wood_lines.h"
 
@@ -104,6 +107,48 @@ TEST(WoodLines, SameFrameSameStrokes) {
   ASSERT_EQ(a.strokes.size(), b.strokes.size());
   for (size_t i = 0; i < a.strokes.size(); ++i)
     EXPECT_EQ(a.strokes[i].points, b.strokes[i].points);
+}
+
+TEST(WoodLines, ASplatMadeBeforeTheRasterSeesTheSameWood) {
+  // The wood's samples (a trunk, 0.05 apart) splatted before the raster (the pass "wood-splat")
+  // complete the seen wood exactly as splatting them in seen_wood does.
+  SurfaceSamples samples;
+  samples.spacing = 0.05f;
+  for (int i = 0; i <= 60; ++i)
+    for (int k = 0; k < 8; ++k) {
+      const float a = 0.785f * float(k);
+      samples.positions.push_back(
+          {0.15f * std::cos(a), -1.5f + 0.05f * float(i), 0.15f * std::sin(a)});
+      samples.clusters.push_back(uint32_t(kWood));
+    }
+  samples.normals.assign(samples.size(), glm::vec3(0, 0, 1));
+  samples.areas.assign(samples.size(), 0.0025f);
+  const Camera camera = make_orbit_camera(Sphere{{0, 0, 0}, 2.0f}, OrbitParams{}, kSize, kSize);
+  const WoodSplat splat = wood_splat(samples, camera, kWood);
+  ASSERT_EQ(splat.z.size(), cv::Size(kSize, kSize));
+  cv::Mat hit = splat.z < std::numeric_limits<float>::infinity();
+  EXPECT_GT(cv::countNonZero(hit), 500);  // the trunk's column, every sample a disc
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(splat.z, &lo, &hi, nullptr, nullptr, hit);
+  EXPECT_GT(lo, 0.0);
+  EXPECT_TRUE(std::isfinite(hi));
+  EXPECT_TRUE(wood_splat(samples, camera, 0).z.empty());  // no wood cluster, no splat
+  // Leaves everywhere, from in front of the trunk (left) to behind it (right): where they do
+  // not stand clearly in front, the trunk is seen through them.
+  cv::Mat id(kSize, kSize, CV_32SC1, cv::Scalar(kLeaf)), depth(kSize, kSize, CV_32FC1);
+  for (int x = 0; x < kSize; ++x)
+    depth.col(x).setTo(float(lo) - 0.5f + float(hi - lo + 1.0) * float(x) / kSize);
+  WoodImages in;
+  in.id = id;
+  in.depth = depth;
+  in.camera = camera;
+  in.samples = std::make_shared<const SurfaceSamples>(samples);
+  const SeenWood here = seen_wood(in, kWood, 10.0);
+  in.splat = splat;
+  const SeenWood before = seen_wood(in, kWood, 10.0);
+  EXPECT_GT(cv::countNonZero(here.mask), 500);
+  EXPECT_EQ(cv::countNonZero(here.mask != before.mask), 0);
+  EXPECT_EQ(cv::countNonZero(here.depth != before.depth), 0);
 }
 
 }  // namespace

@@ -111,8 +111,14 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
     setup.shading = shading;
     setup.request.scaled_normals = style.normals() == NormalMode::RealignedScaled;
   }
-  const GBufferHandles gb = add_raster_pass(graph, setup);
+  // The scene's samples and pieces before the raster, as styles/sheet.cpp adds them: the passes
+  // that need no raster run while it draws.
   StyleContext context;
+  context.surface_samples = add_surface_samples_pass(graph, &r.scene, r.samples);
+  context.branch_cluster = r.scene.branch_cluster_id();
+  context.leaf_pieces =
+      add_leaf_pieces_pass(graph, context.surface_samples, context.branch_cluster, r.pieces);
+  const GBufferHandles gb = add_raster_pass(graph, setup);
   context.lighting = setup.lighting;
   context.view = setup.camera.view;
   context.background = setup.request.background;
@@ -120,10 +126,6 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.rasterizer = r.raster.get();  // toon.cast_shadows renders the key light's shadow map
   context.scene_sphere = r.scene.framing_sphere();
   context.camera = setup.camera;
-  context.branch_cluster = r.scene.branch_cluster_id();
-  context.surface_samples = add_surface_samples_pass(graph, &r.scene, r.samples);
-  context.leaf_pieces =
-      add_leaf_pieces_pass(graph, context.surface_samples, context.branch_cluster, r.pieces);
   const ImageHandle out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
   graph.present(out);
   graph.execute();

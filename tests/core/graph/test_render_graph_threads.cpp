@@ -1,7 +1,8 @@
 // Passes that may run on any thread (RenderGraph::Threads::Any): two independent ones run at
-// once, a pass still sees every input it reads written, the calling thread's passes run there,
-// a pass's exception reaches the caller once the passes beside it have ended, and the values
-// are those of running the passes in order.
+// once, one ready beside a pass of the calling thread starts first and runs while it does, a pass
+// still sees every input it reads written, the calling thread's passes run there, a pass's
+// exception reaches the caller once the passes beside it have ended, and the values are those of
+// running the passes in order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,6 +53,29 @@ TEST(RenderGraphThreads, TwoIndependentPassesRunAtOnce) {
   g.present(sum);
   g.execute();
   EXPECT_EQ(g.get(sum), 3);
+}
+
+TEST(RenderGraphThreads, APassReadyBesideACallingThreadPassRunsWhileItDoes) {
+  // "raster" (the calling thread's, declared first) waits for "beside" to have started: had it
+  // run first, it would wait in vain, as "beside" would not start before it ended.
+  RenderGraph g;
+  const auto raster = g.resource<int>("raster"), beside = g.resource<int>("beside");
+  const auto out = g.resource<int>("out");
+  std::atomic<bool> beside_started{false};
+  g.add_pass("raster", {}, {raster},
+             [&](PassContext& c) { c.write(raster, wait_for(beside_started) ? 1 : -100); });
+  g.add_pass(
+      "beside", {}, {beside},
+      [&](PassContext& c) {
+        beside_started = true;
+        c.write(beside, 2);
+      },
+      Threads::Any);
+  g.add_pass("out", {raster, beside}, {out},
+             [&](PassContext& c) { c.write(out, c.read<int>(raster) + c.read<int>(beside)); });
+  g.present(out);
+  g.execute();
+  EXPECT_EQ(g.get(out), 3);
 }
 
 TEST(RenderGraphThreads, APassSeesWhatItReadsAndMainPassesRunOnTheCallingThread) {
