@@ -152,6 +152,9 @@ void composite_row(const InkComposite& in, int y, cv::Vec4b* o) {
   const cv::Vec3f* pp = in.paper.ptr<cv::Vec3f>(y);
   const cv::Vec4b* c = kColor ? in.coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
   const float* m = kColor ? nullptr : in.coverage_or_color.ptr<float>(y);
+  // The last ground encoded: a flat sheet (no grain, no wash) is encoded once a row.
+  cv::Vec3f last(-1.0f, -1.0f, -1.0f);
+  cv::Vec3b last8(0, 0, 0);
   for (int x = 0; x < in.lines.cols; ++x) {
     float a = 0.0f;
     if constexpr (kWash || kTransparent)
@@ -173,12 +176,17 @@ void composite_row(const InkComposite& in, int y, cv::Vec4b* o) {
       alpha = ink + a * (1.0f - ink);
       keep = alpha > 0.0f ? a * (1.0f - ink) / alpha : 1.0f;
     }
+    if (ground != last) {
+      for (int k = 0; k < 3; ++k)
+        last8[k] = encode(in.encode_table, ground[k]);
+      last = ground;
+    }
     for (int k = 0; k < 3; ++k) {
-      const uint8_t g = encode(in.encode_table, ground[k]);
       // Bare ground (most of the picture) as it is: the blend would give the same byte.
-      o[x][k] = keep == 1.0f
-                    ? g
-                    : uint8_t(round_non_negative(float(g) * keep + in.line8[k] * (1.0f - keep)));
+      o[x][k] =
+          keep == 1.0f
+              ? last8[k]
+              : uint8_t(round_non_negative(float(last8[k]) * keep + in.line8[k] * (1.0f - keep)));
     }
     o[x][3] = kTransparent ? uint8_t(round_non_negative(alpha * 255.0f)) : uint8_t(255);
   }
