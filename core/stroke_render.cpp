@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -126,24 +127,36 @@ void cover_segment(cv::Mat& cover, cv::Point origin, glm::vec2 a, glm::vec2 b, f
   }
 }
 
-// Composites a line stroke (covered_as_line) over `coverage`'s rows [rows.start, rows.end)
-// (coverage += c (1 - coverage), c its coverage times its opacity, as cairo's OVER): each pixel
-// covered as by its nearest segment, so the line's joins and ends are round, as cairo's.
-// `scratch` holds the stroke's own coverage over its box.
-void cover_line(cv::Mat& coverage, const Stroke& s, cv::Range rows, cv::Mat& scratch) {
-  const float half = 0.5f * s.width, reach = half + 1.0f;
-  const float opacity = std::min(s.opacity, 1.0f);
-  glm::vec2 lo = s.points[0], hi = s.points[0];
-  bool finite = std::isfinite(half);
+// A line's points' extent grown by its half width and a pixel of antialiasing: what it can
+// touch. Not drawn when a point or the width is not finite, or the opacity is nothing.
+struct LineBox {
+  glm::vec2 lo{0.0f}, hi{0.0f};
+  bool drawn = false;
+};
+
+LineBox line_box(const Stroke& s) {
+  const float reach = 0.5f * s.width + 1.0f;
+  LineBox box{s.points[0], s.points[0], std::isfinite(reach) && s.opacity > 0.0f};
   for (const glm::vec2& q : s.points) {
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-    finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
+    box.lo = glm::min(box.lo, q);
+    box.hi = glm::max(box.hi, q);
+    box.drawn = box.drawn && std::isfinite(q.x) && std::isfinite(q.y);
   }
-  if (!finite) return;
-  const auto [x0, x1] = pixel_span(lo.x - reach, hi.x + reach, coverage.cols);
-  const auto [y0, y1] = pixel_span(std::max(lo.y - reach, float(rows.start)),
-                                   std::min(hi.y + reach, float(rows.end)), coverage.rows);
+  box.lo -= reach;
+  box.hi += reach;
+  return box;
+}
+
+// Composites a line stroke (covered_as_line, its line_box `box`) over `coverage`'s rows
+// [rows.start, rows.end) (coverage += c (1 - coverage), c its coverage times its opacity, as
+// cairo's OVER): each pixel covered as by its nearest segment, so the line's joins and ends are
+// round, as cairo's. `scratch` holds the stroke's own coverage over its box.
+void cover_line(cv::Mat& coverage, const Stroke& s, const LineBox& box, cv::Range rows,
+                cv::Mat& scratch) {
+  const float half = 0.5f * s.width, opacity = std::min(s.opacity, 1.0f);
+  const auto [x0, x1] = pixel_span(box.lo.x, box.hi.x, coverage.cols);
+  const auto [y0, y1] = pixel_span(std::max(box.lo.y, float(rows.start)),
+                                   std::min(box.hi.y, float(rows.end)), coverage.rows);
   if (x0 >= x1 || y0 >= y1) return;
   scratch.create(y1 - y0, x1 - x0, CV_32F);
   scratch.setTo(0.0f);
@@ -190,6 +203,10 @@ cv::Mat rasterize_strokes(const StrokeDrawing& d) {
   // the strokes reaching it (the same pixels, at the same integer offsets, as one surface
   // gives), then the lines covered over them.
   const int bands = std::clamp(d.size.height / kBandRows, 1, std::max(1, 2 * cv::getNumThreads()));
+  // The lines' boxes, found once for every band.
+  std::vector<LineBox> boxes(d.strokes.size());
+  for (size_t i = 0; i < d.strokes.size(); ++i)
+    if (covered_as_line(d.strokes[i])) boxes[i] = line_box(d.strokes[i]);
   bool ok = true;
   cv::parallel_for_(cv::Range(0, bands), [&](const cv::Range& r) {
     cv::Mat scratch;
@@ -199,10 +216,10 @@ cv::Mat rasterize_strokes(const StrokeDrawing& d) {
       alpha.rowRange(y0, y1)
           .colRange(0, d.size.width)
           .convertTo(coverage.rowRange(y0, y1), CV_32F, 1.0 / 255.0);
-      for (const Stroke& s : d.strokes) {
-        if (!covered_as_line(s) || s.opacity <= 0.0f) continue;
-        const auto [lo, hi] = stroke_rows(s);
-        if (hi >= float(y0) && lo <= float(y1)) cover_line(coverage, s, {y0, y1}, scratch);
+      for (size_t i = 0; i < d.strokes.size(); ++i) {
+        const LineBox& box = boxes[i];
+        if (box.drawn && box.hi.y >= float(y0) && box.lo.y <= float(y1))
+          cover_line(coverage, d.strokes[i], box, {y0, y1}, scratch);
       }
     }
   });
