@@ -58,6 +58,7 @@ class CornerGraph {
     m_free_x = c.x.empty() ? cv::Mat() : cv::Mat(c.x != 0);
     m_free_y = c.y.empty() ? cv::Mat() : cv::Mat(c.y != 0);
     m_degree = corner_degrees(m_free_x, m_free_y, m_w, m_h);
+    m_left = m_degree.clone();
   }
   // The corners that touch a crack, row by row (y, then x).
   std::vector<cv::Point> corners() const {
@@ -92,7 +93,13 @@ class CornerGraph {
   }
   // The cracks meeting at corner (cx, cy), used or not.
   int degree(int cx, int cy) const { return m_degree.at<uint8_t>(cy, cx); }
-  void use(int cx, int cy, int d) { *crack(cx, cy, d) = 0; }
+  // The free cracks left at corner (cx, cy).
+  int left(int cx, int cy) const { return m_left.at<uint8_t>(cy, cx); }
+  void use(int cx, int cy, int d) {
+    *crack(cx, cy, d) = 0;
+    --m_left.at<uint8_t>(cy, cx);
+    --m_left.at<uint8_t>(cy + kStepY[d], cx + kStepX[d]);
+  }
 
   // Follows free cracks from corner (cx, cy) leaving in direction d (free).
   Polyline walk(int cx, int cy, int d) {
@@ -130,6 +137,7 @@ class CornerGraph {
   int m_w, m_h;
   cv::Mat m_free_x, m_free_y;
   cv::Mat m_degree;  // CV_8UC1, (H + 1) x (W + 1): the cracks meeting at each corner
+  cv::Mat m_left;    // the same, less those a chain has used
 };
 
 }  // namespace
@@ -138,6 +146,7 @@ std::vector<Polyline> chain_cracks(const Cracks& cracks) {
   CornerGraph g(cracks);
   std::vector<Polyline> out;
   auto walk_all_from = [&](int cx, int cy) {
+    if (g.left(cx, cy) == 0) return;
     for (int d = 0; d < 4; ++d)
       if (g.free(cx, cy, d)) out.push_back(g.walk(cx, cy, d));
   };

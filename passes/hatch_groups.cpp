@@ -162,8 +162,11 @@ cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const 
     for (int y = y0; y < y1; ++y) {
       const float* from = r.ptr<float>(y);
       float* to = t.ptr<float>(y);
-      for (int x = 0; x < r.cols; ++x)
-        to[x] = std::pow(std::clamp((from[x] - lo) / (hi - lo), 0.0f, 1.0f), p.gamma);
+      for (int x = 0; x < r.cols; ++x) {
+        // pen.gamma > 0: no tone and full tone stay as they are (most of the frame is paper).
+        const float c = std::clamp((from[x] - lo) / (hi - lo), 0.0f, 1.0f);
+        to[x] = c > 0.0f && c < 1.0f ? std::pow(c, p.gamma) : c;
+      }
     }
   });
   return t;
@@ -246,13 +249,17 @@ std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regio
   const int n = cv::connectedComponentsWithStats(wood, labels, stats, centres, 8, CV_32S);
   std::vector<Group> groups;
   std::vector<cv::Vec3d> moments(size_t(std::max(0, n)), cv::Vec3d(0, 0, 0));
-  for (int y = 0; y < labels.rows; ++y)
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    int* region = regions.ptr<int>(y);
     for (int x = 0; x < labels.cols; ++x)
-      if (const int l = labels.at<int>(y, x); l > 0) {
-        const double dx = x - centres.at<double>(l, 0), dy = y - centres.at<double>(l, 1);
+      if (const int l = label[x]; l > 0) {
+        const double* c = centres.ptr<double>(l);
+        const double dx = x - c[0], dy = y - c[1];
         moments[size_t(l)] += cv::Vec3d(dx * dx, dx * dy, dy * dy);
-        regions.at<int>(y, x) = first + l;
+        region[x] = first + l;
       }
+  }
   for (int l = 1; l < n; ++l) {
     const cv::Vec3d& mo = moments[size_t(l)];
     const double angle = 0.5 * std::atan2(2.0 * mo[1], mo[0] - mo[2]);
@@ -351,19 +358,27 @@ StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const 
 
 Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> layer,
                                             ImageHandle normal, ImageHandle color,
-                                            const PenParams& p, double detail, HatchWhat what) {
+                                            const PenParams& p, double detail, HatchWhat what,
+                                            Handle<LeafTone> tone) {
   SYLVA_CHECK(color.valid() && (normal.valid() || !what.foliage),
               "hatching needs the color resource, and the normals for the crown's clumps");
   const auto out = g.resource<StrokeDrawing>("hatching");
   // Only the crown's clumps read the normals (the raster then leaves them out for `ink`).
   std::vector<ResourceRef> reads{layer, color};
   if (what.foliage) reads.push_back(normal);
+  if (tone.valid()) reads.push_back(tone);
   g.add_pass(
       "hatching", reads, {out},
       [=](PassContext& ctx) {
         const cv::Mat normals = what.foliage ? ctx.read<cv::Mat>(normal) : cv::Mat();
-        ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), normals, ctx.read<cv::Mat>(color),
-                                    p, detail, what));
+        const LeafLayer& read = ctx.read<LeafLayer>(layer);
+        auto hatch = [&](const LeafLayer& l) {
+          ctx.write(out, hatch_groups(l, normals, ctx.read<cv::Mat>(color), p, detail, what));
+        };
+        if (!tone.valid() || !read.darkness.empty()) return hatch(read);
+        LeafLayer shaded = read;  // the wood layer: no drawing to copy
+        shaded.darkness = ctx.read<LeafTone>(tone).darkness;
+        hatch(shaded);
       },
       RenderGraph::Threads::Any);
   return out;

@@ -48,9 +48,11 @@ struct HatchWhat {
 StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const cv::Mat& color,
                            const PenParams& p, double detail, HatchWhat what = {});
 
-// Adds the pass "hatching" and returns its strokes.
+// Adds the pass "hatching" and returns its strokes. tone (optional): "leaf-tone", whose darkness
+// ranks the wood where the layer has none (the wood layer).
 Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> layer,
                                             ImageHandle normal, ImageHandle color,
-                                            const PenParams& p, double detail, HatchWhat what = {});
+                                            const PenParams& p, double detail, HatchWhat what = {},
+                                            Handle<LeafTone> tone = {});
 
 }  // namespace sylva

@@ -243,7 +243,7 @@ void light_primitives(const LeafImages& in, const LeafParams& p, LeafFrame& fram
 }
 
 // Each primitive's rank among the plant's by its darkness, weighted by the pixels it shows; the
-// layer's rank image, clusters, centres and depth range.
+// layer's rank image.
 void rank_primitives(const std::vector<float>& darkness, std::vector<Primitive>& prims,
                      LeafLayer& layer) {
   const cv::Size work = layer.front.size();
@@ -272,6 +272,10 @@ void rank_primitives(const std::vector<float>& darkness, std::vector<Primitive>&
     for (int x = 0; x < work.width; ++x)
       if (front[x] > 0) rank[x] = prims[size_t(front[x] - 1)].rank;
   }
+}
+
+// The primitives' depth range, clusters, centres and areas, into the layer.
+void primitive_ranges(const std::vector<Primitive>& prims, LeafLayer& layer) {
   layer.near = prims.empty() ? 0.0f : std::numeric_limits<float>::max();
   layer.far = 0.0f;
   for (const Primitive& q : prims) {
@@ -368,30 +372,37 @@ LeafTone leaf_tone(const LeafFrame& frame, const cv::Mat& color) {
   return out;
 }
 
-LeafLayer wood_layer(const LeafFrame& frame, const LeafTone& tone, const SeenWood& wood,
-                     const EdgeParams& edges) {
+LeafLayer wood_layer(const LeafFrame& frame, const SeenWood& wood, const EdgeParams& edges) {
   LeafLayer layer;
   layer.factor = frame.factor;
   layer.drawing.size = frame.size;
   layer.drawing.color = edges.color;
   layer.front = cv::Mat(frame.work, CV_32SC1, cv::Scalar(0));
   layer.depth = cv::Mat(frame.work, CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
-  layer.darkness = tone.darkness;
   paint_wood(wood, layer.factor, layer);
   return layer;
 }
 
-LeafLayer leaf_layer(const LeafFrame& frame, const LeafTone& tone, const LeafLayer& wood,
-                     const LeafParams& p, const InkLineParams& lines, const EdgeParams& edges) {
-  const double scale = reference_scale(frame.size);
+LeafPaint leaf_paint(const LeafFrame& frame, const LeafLayer& wood) {
+  LeafPaint out;
+  out.layer = wood;
+  out.layer.front = wood.front.clone();
+  out.layer.depth = wood.depth.clone();
+  out.prims = frame.prims;
+  paint_primitives(out.prims, out.layer);
+  primitive_ranges(out.prims, out.layer);
+  plant_extents(out.layer, out.prims);
+  return out;
+}
+
+LeafLayer leaf_layer(const LeafPaint& paint, const LeafTone& tone, const LeafParams& p,
+                     const InkLineParams& lines, const EdgeParams& edges) {
+  const double scale = reference_scale(paint.layer.drawing.size);
   const double detail = lines.detail * scale;  // px
-  LeafLayer layer = wood;
-  layer.front = wood.front.clone();
-  layer.depth = wood.depth.clone();
-  std::vector<Primitive> prims = frame.prims;
-  paint_primitives(prims, layer);
+  LeafLayer layer = paint.layer;
+  layer.darkness = tone.darkness;
+  std::vector<Primitive> prims = paint.prims;
   rank_primitives(tone.dark, prims, layer);
-  plant_extents(layer, prims);
   ArcStyle s;
   s.step = p.depth_step * float(std::max(lines.detail, 0.5f) / 10.0f);
   s.fade = p.fade;
@@ -407,83 +418,27 @@ LeafLayer leaf_layer(const LeafFrame& frame, const LeafTone& tone, const LeafLay
   s.min_points = size_t(std::max(2.0, detail / layer.factor));
   std::vector<Stroke> arcs[2];
   outline_primitives(prims, layer, s, arcs);
-  layer.drawing.strokes = black_fills(prims, layer, p, 1.0f);
-  for (int k = 0; k < 2; ++k) {
-    // Arcs of neighbouring primitives that meet become one path (an outline of many leaves).
-    chain_strokes(arcs[k], 1.5f * float(layer.factor));
-    for (Stroke& st : arcs[k])
+  // The black fills beside the arcs of each class chained: arcs of neighbouring primitives that
+  // meet become one path (an outline of many leaves).
+  cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range& r) {
+    for (int k = r.start; k < r.end; ++k) {
+      if (k == 2)
+        layer.drawing.strokes = black_fills(prims, layer, p, 1.0f);
+      else
+        chain_strokes(arcs[k], 1.5f * float(layer.factor));
+    }
+  });
+  for (std::vector<Stroke>& run : arcs)
+    for (Stroke& st : run)
       layer.drawing.strokes.push_back(std::move(st));
-  }
   return layer;
 }
 
 LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
                      const EdgeParams& edges) {
   const LeafFrame frame = leaf_frame(in, p, lines);
-  const LeafTone tone = leaf_tone(frame, in.color);
-  return leaf_layer(frame, tone, wood_layer(frame, tone, in.wood, edges), p, lines, edges);
-}
-
-LeafLayers add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
-                               const InkLineParams& lines, const EdgeParams& edges) {
-  SYLVA_CHECK(in.pieces.valid() && in.color.valid(),
-              "the leaf layer needs the leaf pieces and color resources");
-  // The primitives and their light need no raster: they are made while it draws.
-  std::vector<ResourceRef> reads = {in.pieces};
-  if (in.samples.valid()) reads.push_back(in.samples);
-  const auto primitives = g.resource<LeafFrame>("leaf-primitives");
-  g.add_pass(
-      "leaf-primitives", reads, {primitives},
-      [=](PassContext& ctx) {
-        LeafImages images;
-        images.pieces = ctx.read<std::shared_ptr<const LeafPieces>>(in.pieces);
-        images.camera = in.camera;
-        images.units_per_px = in.units_per_px;
-        if (in.samples.valid())
-          images.samples = ctx.read<std::shared_ptr<const SurfaceSamples>>(in.samples);
-        images.light = in.light;
-        ctx.write(primitives, leaf_frame(images, p, lines));
-      },
-      RenderGraph::Threads::Any);
-  // Their tone, beside the seen wood.
-  const auto tone = g.resource<LeafTone>("leaf-tone");
-  g.add_pass(
-      "leaf-tone", {primitives, in.color}, {tone},
-      [=](PassContext& ctx) {
-        ctx.write(tone, leaf_tone(ctx.read<LeafFrame>(primitives), ctx.read<cv::Mat>(in.color)));
-      },
-      RenderGraph::Threads::Any);
-  std::vector<ResourceRef> wood_reads = {primitives, tone};
-  if (in.wood.valid()) wood_reads.push_back(in.wood);
-  LeafLayers out;
-  out.wood = g.resource<LeafLayer>("wood-layer");
-  out.layer = g.resource<LeafLayer>("leaf-layer");
-  g.add_pass(
-      "wood-layer", wood_reads, {out.wood},
-      [=](PassContext& ctx) {
-        const SeenWood none;
-        const SeenWood& wood = in.wood.valid() ? ctx.read<SeenWood>(in.wood) : none;
-        ctx.write(out.wood, wood_layer(ctx.read<LeafFrame>(primitives), ctx.read<LeafTone>(tone),
-                                       wood, edges));
-      },
-      RenderGraph::Threads::Any);
-  g.add_pass(
-      "leaf-layer", {primitives, tone, out.wood}, {out.layer},
-      [=](PassContext& ctx) {
-        ctx.write(out.layer, leaf_layer(ctx.read<LeafFrame>(primitives), ctx.read<LeafTone>(tone),
-                                        ctx.read<LeafLayer>(out.wood), p, lines, edges));
-      },
-      RenderGraph::Threads::Any);
-  return out;
-}
-
-Handle<StrokeDrawing> add_leaf_strokes_pass(RenderGraph& g, Handle<LeafLayer> layer) {
-  const auto out = g.resource<StrokeDrawing>("leaf-strokes");
-  g.add_pass(
-      "leaf-strokes", {layer}, {out},
-      [=](PassContext& ctx) { ctx.write(out, ctx.read<LeafLayer>(layer).drawing); },
-      RenderGraph::Threads::Any);
-  return out;
+  const LeafPaint paint = leaf_paint(frame, wood_layer(frame, in.wood, edges));
+  return leaf_layer(paint, leaf_tone(frame, in.color), p, lines, edges);
 }
 
 }  // namespace sylva

@@ -155,15 +155,23 @@ LeafFrame leaf_frame(const LeafImages& in, const LeafParams& p, const InkLinePar
 LeafTone leaf_tone(const LeafFrame& frame, const cv::Mat& color);
 
 // The layer with only the wood painted (front kWoodFront where `wood` is seen, 0 elsewhere; no
-// primitives, no drawing): all that the wood's hatching reads, before the foliage is painted.
-LeafLayer wood_layer(const LeafFrame& frame, const LeafTone& tone, const SeenWood& wood,
-                     const EdgeParams& edges);
+// primitives, no drawing, no darkness): what the foliage is painted over.
+LeafLayer wood_layer(const LeafFrame& frame, const SeenWood& wood, const EdgeParams& edges);
 
-// The layer: `frame`'s primitives painted behind `wood` (the wood_layer of the same frame and
-// tone), ranked by `tone`, and outlined. lines: ink.detail, lines.foliage (the interior arcs) and
-// lines.silhouette (the arcs against the paper); edges: edges.min_width.
-LeafLayer leaf_layer(const LeafFrame& frame, const LeafTone& tone, const LeafLayer& wood,
-                     const LeafParams& p, const InkLineParams& lines, const EdgeParams& edges);
+// A frame's primitives painted behind the wood, before their tone is known.
+struct LeafPaint {
+  // `wood` with the primitives painted (front, depth), and their depth range, clusters, centres
+  // and areas; no rank, drawing or darkness yet.
+  LeafLayer layer;
+  std::vector<Primitive> prims;  // the frame's, with their plant's extent (rank not set)
+};
+LeafPaint leaf_paint(const LeafFrame& frame, const LeafLayer& wood);
+
+// The layer: the painted primitives ranked by `tone` (made from the same frame) and outlined.
+// lines: ink.detail, lines.foliage (the interior arcs) and lines.silhouette (the arcs against the
+// paper); edges: edges.min_width.
+LeafLayer leaf_layer(const LeafPaint& paint, const LeafTone& tone, const LeafParams& p,
+                     const InkLineParams& lines, const EdgeParams& edges);
 
 // leaf_layer of leaf_frame(in, p, lines), its tone from in.color, and in.wood.
 LeafLayer leaf_layer(const LeafImages& in, const LeafParams& p, const InkLineParams& lines,
@@ -182,10 +190,12 @@ struct LeafResources {
 struct LeafLayers {
   Handle<LeafLayer> layer;  // "leaf-layer"
   Handle<LeafLayer> wood;   // "wood-layer": wood_layer
+  Handle<LeafTone> tone;    // "leaf-tone": the darkness the wood layer lacks
 };
 
 // Adds the passes "leaf-primitives" (a LeafFrame, made while the raster draws), "leaf-tone" (a
-// LeafTone), "wood-layer" and "leaf-layer" (painted over a copy of the wood layer).
+// LeafTone), "wood-layer", "leaf-paint" (a LeafPaint: the primitives painted over a copy of the
+// wood layer, beside the tone) and "leaf-layer".
 LeafLayers add_leaf_layer_pass(RenderGraph& g, const LeafResources& in, const LeafParams& p,
                                const InkLineParams& lines, const EdgeParams& edges);
 

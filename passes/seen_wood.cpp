@@ -103,13 +103,22 @@ cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size,
                 x1 = std::min(size.width - 1, int(std::floor(c.cx + c.r - 0.5f)));
       const int y0 = std::max(band0, int(std::ceil(c.cy - c.r - 0.5f))),
                 y1 = std::min(band1 - 1, int(std::floor(c.cy + c.r - 0.5f)));
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const float dx = float(x) + 0.5f - c.cx, dy = float(y) + 0.5f - c.cy;
-          if (dx * dx + dy * dy > c.r * c.r) continue;
-          float& t = z.at<float>(y, x);
-          t = std::min(t, c.d);
-        }
+      for (int y = y0; y <= y1; ++y) {
+        // The row's pixels within the disc: a span, its ends found by the test itself.
+        const float dy = float(y) + 0.5f - c.cy;
+        auto inside = [&](int x) {
+          const float dx = float(x) + 0.5f - c.cx;
+          return dx * dx + dy * dy <= c.r * c.r;
+        };
+        int from = x0, to = x1;
+        while (from <= to && !inside(from))
+          ++from;
+        while (to >= from && !inside(to))
+          --to;
+        float* t = z.ptr<float>(y);
+        for (int x = from; x <= to; ++x)
+          t[x] = std::min(t[x], c.d);
+      }
     }
   });
   return z;

@@ -33,6 +33,22 @@ Cracks wood_outline(const cv::Mat& wood, const cv::Mat& depth, float jump, float
   return c;
 }
 
+// The chained cracks of wood_outline, found within the wood's box and a pixel around it (every
+// crack has wood on one side), in the frame's coordinates.
+std::vector<Polyline> wood_chains(const SeenWood& seen, float jump) {
+  const cv::Rect frame(0, 0, seen.mask.cols, seen.mask.rows);
+  const cv::Rect wood = cv::boundingRect(seen.mask);
+  if (wood.empty()) return {};
+  const cv::Rect box = cv::Rect(wood.x - 1, wood.y - 1, wood.width + 2, wood.height + 2) & frame;
+  std::vector<Polyline> chains =
+      chain_cracks(wood_outline(seen.mask(box), seen.depth(box), jump, seen.cover));
+  const cv::Point2f origin(float(box.x), float(box.y));
+  for (Polyline& chain : chains)
+    for (cv::Point2f& q : chain.points)
+      q += origin;
+  return chains;
+}
+
 // Moves each point of an outline onto the wood's side of its edge by `offset` px, so the line
 // lies over the wood it outlines, not over what is behind it.
 void onto_wood(Polyline& line, const cv::Mat& mask, float offset) {
@@ -80,8 +96,7 @@ StrokeDrawing wood_strokes(const SeenWood& seen, const InkLineParams& lines,
   const cv::Mat& mask = seen.mask;
   const float width = float(std::max<double>(edges.min_width, lines.wood.width * scale));
   const double min_length = std::max(3.0 * scale, 1.0 * lines.detail * scale);
-  const std::vector<Polyline> chains =
-      chain_cracks(wood_outline(mask, seen.depth, edges.depth_threshold, seen.cover));
+  const std::vector<Polyline> chains = wood_chains(seen, edges.depth_threshold);
   // Each chain smoothed in parallel (it depends on itself alone), kept in the chains' order.
   std::vector<std::optional<Stroke>> strokes(chains.size());
   cv::parallel_for_(cv::Range(0, int(chains.size())), [&](const cv::Range& r) {

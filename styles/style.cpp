@@ -166,7 +166,8 @@ StyleOutput build_ink(RenderGraph& graph, const GBufferHandles& gbuffer, const S
     // wood's layer, so it does not wait for the foliage's painting.
     const Handle<StrokeDrawing> tone = add_hatch_groups_pass(
         graph, hatch ? drawing.leaves.layer : drawing.leaves.wood, gbuffer.normal, gbuffer.color,
-        params.pen, params.lines.detail, {.foliage = hatch, .wood = params.lines.wood_shade});
+        params.pen, params.lines.detail, {.foliage = hatch, .wood = params.lines.wood_shade},
+        drawing.leaves.tone);
     strokes = add_merge_strokes_pass(graph, tone, strokes);  // tone under the lines
     parts.push_back({"tone", tone});
   } else if (params.pen.enabled()) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <condition_variable>
-#include <deque>
 #include <future>
 #include <mutex>
 #include <set>
@@ -165,42 +164,6 @@ namespace {
 // fill the cores where one alone leaves them idle between its parallel loops.
 constexpr size_t kMostInFlight = 2;
 
-struct InFlight {
-  int pass;
-  std::future<void> done;
-};
-
-// The passes in flight that have ended, in the order they did.
-class Landings {
- public:
-  void land(int pass) {
-    {
-      const std::lock_guard<std::mutex> lock(m_mutex);
-      m_ended.push_back(pass);
-    }
-    m_ended_one.notify_one();
-  }
-  int wait() {
-    std::unique_lock<std::mutex> lock(m_mutex);
-    m_ended_one.wait(lock, [this] { return !m_ended.empty(); });
-    const int pass = m_ended.front();
-    m_ended.pop_front();
-    return pass;
-  }
-
- private:
-  std::mutex m_mutex;
-  std::condition_variable m_ended_one;
-  std::deque<int> m_ended;
-};
-
-// Tells `landings` that `pass` ended, however it ends.
-struct Landed {
-  Landings& landings;
-  int pass;
-  ~Landed() { landings.land(pass); }
-};
-
 }  // namespace
 
 // Which live passes can run: how many unfinished passes write what each one reads, and the
@@ -235,51 +198,123 @@ RenderGraph::Schedule RenderGraph::schedule() const {
   return s;
 }
 
+// One execute(): the schedule and what is in flight, shared by the calling thread and the
+// workers under one lock. A worker that ends a pass finishes it and goes on with the next ready
+// pass for any thread itself, so a pass waiting for it starts at once, on the core that is
+// already running, rather than when the calling thread next wakes (a busy core can keep it
+// waiting for milliseconds), and passes for any thread go on while the calling thread runs one
+// of its own (the raster).
+class RenderGraph::Runner {
+ public:
+  Runner(RenderGraph& graph, const std::function<void(const std::string&)>& after_pass)
+      : m_graph(graph), m_after_pass(after_pass), m_schedule(graph.schedule()) {}
+
+  void run() {
+    std::unique_lock<std::mutex> lock(m_mutex);
+    while (m_schedule.left > 0 && !m_error) {
+      launch_ready();
+      const int pass = take(Threads::Main);
+      if (pass >= 0) {
+        lock.unlock();
+        std::exception_ptr error = attempt(pass);
+        lock.lock();
+        end(pass, error);
+        continue;
+      }
+      if (m_flying == 0) {
+        m_error = attempt_check(false, "render graph: no pass can run");
+        break;
+      }
+      m_changed.wait(lock);
+    }
+    m_changed.wait(lock, [this] { return m_flying == 0; });
+    lock.unlock();
+    m_workers.clear();  // their threads have ended their work
+    if (m_error) std::rethrow_exception(m_error);
+  }
+
+ private:
+  // The first ready pass for `threads`, taken from the ready set; -1 when there is none.
+  int take(Threads threads) {
+    const auto it = std::find_if(m_schedule.ready.begin(), m_schedule.ready.end(), [&](int p) {
+      return m_graph.m_passes[size_t(p)].threads == threads;
+    });
+    if (it == m_schedule.ready.end()) return -1;
+    const int pass = *it;
+    m_schedule.ready.erase(it);
+    return pass;
+  }
+  // Starts workers on ready passes for any thread while fewer than kMostInFlight are in flight.
+  void launch_ready() {
+    while (m_flying < kMostInFlight && !m_error) {
+      const int pass = take(Threads::Any);
+      if (pass < 0) return;
+      ++m_flying;
+      try {
+        m_workers.push_back(std::async(std::launch::async, [this, pass] { work(pass); }));
+      } catch (...) {  // no thread for it
+        --m_flying;
+        m_error = std::current_exception();
+      }
+    }
+  }
+  // SYLVA_CHECK's exception when `cond` fails, else null.
+  static std::exception_ptr attempt_check(bool cond, const std::string& message) {
+    try {
+      SYLVA_CHECK(cond, message);
+      return nullptr;
+    } catch (...) {
+      return std::current_exception();
+    }
+  }
+  // Runs `pass`; its exception, or an interrupt before it (core/interrupt.h), as the result.
+  std::exception_ptr attempt(int pass) {
+    try {
+      check_interrupt();  // a long render stops between passes after SIGINT
+      m_graph.run_pass(pass);
+      return nullptr;
+    } catch (...) {
+      return std::current_exception();
+    }
+  }
+  // Under the lock, once `pass` has run: finished, or the graph's first error kept.
+  void end(int pass, std::exception_ptr error) {
+    if (!error) {
+      try {
+        m_graph.finish_pass(pass, m_after_pass);
+        m_schedule.finished(pass);
+      } catch (...) {
+        error = std::current_exception();
+      }
+    }
+    if (error && !m_error) m_error = error;
+    m_changed.notify_all();
+  }
+  // A worker: `pass`, then the next ready pass for any thread, until none is or one failed.
+  void work(int pass) {
+    while (pass >= 0) {
+      const std::exception_ptr error = attempt(pass);
+      const std::lock_guard<std::mutex> lock(m_mutex);
+      end(pass, error);
+      pass = m_error ? -1 : take(Threads::Any);
+      if (pass < 0) --m_flying;
+      launch_ready();
+    }
+  }
+
+  RenderGraph& m_graph;
+  const std::function<void(const std::string&)>& m_after_pass;
+  Schedule m_schedule;
+  std::mutex m_mutex;
+  std::condition_variable m_changed;  // a pass ended
+  size_t m_flying = 0;                // workers with a pass
+  std::exception_ptr m_error;         // the first pass's exception
+  std::vector<std::future<void>> m_workers;
+};
+
 void RenderGraph::execute(const std::function<void(const std::string&)>& after_pass) {
   if (!m_compiled) compile();
-  Schedule s = schedule();
-  auto finished = [&](int p) {
-    finish_pass(p, after_pass);
-    s.finished(p);
-  };
-  Landings landings;  // outlives `flying`, whose futures wait for their passes when destroyed
-  std::vector<InFlight> flying;
-  while (s.left > 0) {
-    check_interrupt();  // a long render stops between passes after SIGINT (core/interrupt.h)
-    // The first ready pass that can start: one for any thread while fewer than kMostInFlight
-    // are in flight, else one for the calling thread at once (beside the passes in flight, which
-    // only read what it cannot change). Passes in flight go first, so the work that does not
-    // wait for a calling-thread pass (the raster) runs while it does.
-    auto next = std::find_if(s.ready.begin(), s.ready.end(), [&](int p) {
-      return m_passes[size_t(p)].threads == Threads::Any && flying.size() < kMostInFlight;
-    });
-    if (next == s.ready.end())
-      next = std::find_if(s.ready.begin(), s.ready.end(),
-                          [&](int p) { return m_passes[size_t(p)].threads == Threads::Main; });
-    if (next != s.ready.end()) {
-      const int pass = *next;
-      s.ready.erase(next);
-      if (m_passes[size_t(pass)].threads == Threads::Any) {
-        flying.push_back({pass, std::async(std::launch::async, [this, pass, &landings] {
-                            const Landed landed{landings, pass};
-                            run_pass(pass);
-                          })});
-      } else {
-        run_pass(pass);
-        finished(pass);
-      }
-      continue;
-    }
-    SYLVA_CHECK(!flying.empty(), "render graph: no pass can run");
-    // The first pass in flight to end (its exception, if any, thrown here).
-    const int ended = landings.wait();
-    const auto it = std::find_if(flying.begin(), flying.end(),
-                                 [ended](const InFlight& f) { return f.pass == ended; });
-    InFlight landed = std::move(*it);
-    flying.erase(it);
-    landed.done.get();
-    finished(ended);
-  }
+  Runner(*this, after_pass).run();
 }
 
 bool RenderGraph::is_live(ResourceRef resource) const {

@@ -98,7 +98,9 @@ class RenderGraph {
   // has run: the Threads::Main passes one at a time on the calling thread, up to two
   // Threads::Any passes beside them, in an order that can differ from the order they were
   // added in. The values are those of running the passes one by one in order. A pass's
-  // exception is thrown here once the passes running beside it have ended.
+  // exception is thrown here once the passes running beside it have ended. after_pass and the
+  // observer are called one at a time, on the thread that ran the pass (a worker's, for a
+  // Threads::Any pass, which then goes on with the next ready one).
   void execute(const std::function<void(const std::string&)>& after_pass = {});
 
   bool compiled() const { return m_compiled; }
@@ -156,6 +158,7 @@ class RenderGraph {
     bool live = false;
   };
   struct Schedule;
+  class Runner;
   Schedule schedule() const;
   void run_pass(int pass);
   // What execute() does once `pass` has run: checks its outputs, shows them to the observer,

@@ -101,6 +101,36 @@ TEST(WoodLines, NoWoodClusterNoStrokes) {
   EXPECT_TRUE(d.strokes.empty());
 }
 
+TEST(WoodLines, WoodMovedInTheFrameDrawsTheSameStrokesMoved) {
+  // A branch with a leaf in front of it, away from the frame's edges, drawn in a frame and again
+  // moved by (37, 21) in a larger one: the same strokes, moved (the outline is found around the
+  // wood, wherever it lies in the frame).
+  auto frame = [](cv::Size size, cv::Point at) {
+    TrunkFrame f(false);
+    f.id = cv::Mat(size, CV_32SC1, cv::Scalar(0));
+    f.depth = cv::Mat(size, CV_32FC1, cv::Scalar(0));
+    f.id(cv::Rect(at.x + 100, at.y + 40, 40, 160)).setTo(kWood);
+    f.depth(cv::Rect(at.x + 100, at.y + 40, 40, 160)).setTo(10.0f);
+    cv::Mat leaf(size, CV_8UC1, cv::Scalar(0));
+    cv::circle(leaf, at + cv::Point(100, 120), 14, cv::Scalar(255), cv::FILLED);
+    f.id.setTo(kLeaf, leaf);
+    f.depth.setTo(6.0f, leaf);
+    return f;
+  };
+  const cv::Point shift(37, 21);
+  const StrokeDrawing a = draw(frame({kSize, kSize}, {0, 0}));
+  const StrokeDrawing b = draw(frame({kSize + 60, kSize + 40}, shift));
+  ASSERT_GT(a.strokes.size(), 0u);
+  ASSERT_EQ(a.strokes.size(), b.strokes.size());
+  for (size_t i = 0; i < a.strokes.size(); ++i) {
+    ASSERT_EQ(a.strokes[i].points.size(), b.strokes[i].points.size());
+    for (size_t k = 0; k < a.strokes[i].points.size(); ++k) {
+      EXPECT_NEAR(a.strokes[i].points[k].x + float(shift.x), b.strokes[i].points[k].x, 1e-3f);
+      EXPECT_NEAR(a.strokes[i].points[k].y + float(shift.y), b.strokes[i].points[k].y, 1e-3f);
+    }
+  }
+}
+
 TEST(WoodLines, SameFrameSameStrokes) {
   const TrunkFrame f;
   const StrokeDrawing a = draw(f), b = draw(f);

@@ -1,5 +1,6 @@
 // Passes that may run on any thread (RenderGraph::Threads::Any): two independent ones run at
-// once, one ready beside a pass of the calling thread starts first and runs while it does, a pass
+// once, one ready beside a pass of the calling thread starts first and runs while it does, one
+// that becomes ready while it runs starts then (the worker before it goes on with it), a pass
 // still sees every input it reads written, the calling thread's passes run there, a pass's
 // exception reaches the caller once the passes beside it have ended, and the values are those of
 // running the passes in order.
@@ -76,6 +77,32 @@ TEST(RenderGraphThreads, APassReadyBesideACallingThreadPassRunsWhileItDoes) {
   g.present(out);
   g.execute();
   EXPECT_EQ(g.get(out), 3);
+}
+
+TEST(RenderGraphThreads, APassThatBecomesReadyWhileACallingThreadPassRunsStartsThen) {
+  // "raster" (the calling thread's) waits for "late" to have started; "late" reads "early", which
+  // starts beside "raster". The worker that ends "early" goes on with "late" itself: had it
+  // waited for the calling thread to start it, "raster" would wait in vain.
+  RenderGraph g;
+  const auto early = g.resource<int>("early"), late = g.resource<int>("late");
+  const auto raster = g.resource<int>("raster"), out = g.resource<int>("out");
+  std::atomic<bool> late_started{false};
+  g.add_pass("raster", {}, {raster},
+             [&](PassContext& c) { c.write(raster, wait_for(late_started) ? 1 : -100); });
+  g.add_pass(
+      "early", {}, {early}, [&](PassContext& c) { c.write(early, 10); }, Threads::Any);
+  g.add_pass(
+      "late", {early}, {late},
+      [&](PassContext& c) {
+        late_started = true;
+        c.write(late, c.read<int>(early) * 10);
+      },
+      Threads::Any);
+  g.add_pass("out", {raster, late}, {out},
+             [&](PassContext& c) { c.write(out, c.read<int>(raster) + c.read<int>(late)); });
+  g.present(out);
+  g.execute();
+  EXPECT_EQ(g.get(out), 101);
 }
 
 TEST(RenderGraphThreads, APassSeesWhatItReadsAndMainPassesRunOnTheCallingThread) {
