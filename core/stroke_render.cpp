@@ -52,18 +52,19 @@ bool covered_as_line(const Stroke& s) {
 }
 
 // Paints d's strokes (those covered_as_line too where `lines`) whose rows can reach
-// [row_lo, row_hi].
+// [row_lo, row_hi]: their stroke_rows, in `rows` when given (one per stroke).
 void paint(cairo_t* cr, const StrokeDrawing& d, double scale, float row_lo, float row_hi,
-           bool lines) {
+           bool lines, const std::vector<std::pair<float, float>>* rows = nullptr) {
   const double r = linear_to_srgb(d.color.r), g = linear_to_srgb(d.color.g),
                b = linear_to_srgb(d.color.b);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
-  for (const Stroke& s : d.strokes) {
+  for (size_t i = 0; i < d.strokes.size(); ++i) {
+    const Stroke& s = d.strokes[i];
     if (s.points.empty() || s.opacity <= 0.0f || (!lines && covered_as_line(s))) continue;
     if (row_lo > -kNoCull) {
-      const auto [lo, hi] = stroke_rows(s);
+      const auto [lo, hi] = rows ? (*rows)[i] : stroke_rows(s);
       if (hi < row_lo || lo > row_hi) continue;
     }
     cairo_set_source_rgba(cr, r, g, b, s.opacity);
@@ -173,7 +174,8 @@ void cover_line(cv::Mat& coverage, const Stroke& s, const LineBox& box, cv::Rang
 
 // Paints the strokes cairo draws (all but the lines) reaching rows [y0, y1) on those rows of
 // `alpha` (CV_8UC1, cairo's A8 stride). False when cairo cannot make the surface.
-bool paint_band(cv::Mat& alpha, const StrokeDrawing& d, int y0, int y1) {
+bool paint_band(cv::Mat& alpha, const StrokeDrawing& d, int y0, int y1,
+                const std::vector<std::pair<float, float>>& rows) {
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_image_surface_create_for_data(alpha.ptr(y0), CAIRO_FORMAT_A8, d.size.width, y1 - y0,
                                           int(alpha.step[0])),
@@ -182,7 +184,7 @@ bool paint_band(cv::Mat& alpha, const StrokeDrawing& d, int y0, int y1) {
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
                                                         &cairo_destroy);
   cairo_translate(cr.get(), 0.0, -double(y0));
-  paint(cr.get(), d, 1.0, float(y0), float(y1), false);
+  paint(cr.get(), d, 1.0, float(y0), float(y1), false, &rows);
   cairo_surface_flush(surface.get());
   return true;
 }
@@ -193,31 +195,62 @@ void paint_strokes(cairo_t* cr, const StrokeDrawing& d, double scale) {
   paint(cr, d, scale, -kNoCull, kNoCull, true);
 }
 
+namespace {
+
+// Where each stroke can reach, found once for every band: the lines' boxes, the other strokes'
+// rows (for cairo), and whether there is any stroke for cairo to paint.
+struct StrokeReach {
+  std::vector<LineBox> boxes;
+  std::vector<std::pair<float, float>> rows;
+  bool cairo = false;
+};
+
+StrokeReach stroke_reach(const StrokeDrawing& d) {
+  StrokeReach r;
+  r.boxes.resize(d.strokes.size());
+  r.rows.assign(d.strokes.size(), {0.0f, 0.0f});
+  for (size_t i = 0; i < d.strokes.size(); ++i) {
+    const Stroke& s = d.strokes[i];
+    if (covered_as_line(s)) {
+      r.boxes[i] = line_box(s);
+    } else if (!s.points.empty() && s.opacity > 0.0f) {
+      r.rows[i] = stroke_rows(s);
+      r.cairo = true;
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
 cv::Mat rasterize_strokes(const StrokeDrawing& d) {
   SYLVA_CHECK(d.size.width > 0 && d.size.height > 0, "rasterize_strokes: empty size");
   const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_A8, d.size.width);
   SYLVA_CHECK(stride > 0, "rasterize_strokes: the image is too wide");
-  cv::Mat alpha(d.size.height, stride, CV_8UC1, cv::Scalar(0));
+  const StrokeReach reach = stroke_reach(d);
+  // Cleared by the bands that paint it.
+  cv::Mat alpha = reach.cairo ? cv::Mat(d.size.height, stride, CV_8UC1) : cv::Mat();
   cv::Mat coverage(d.size, CV_32F);
   // Bands of rows painted in parallel, each a cairo surface over its rows of `alpha` that draws
   // the strokes reaching it (the same pixels, at the same integer offsets, as one surface
   // gives), then the lines covered over them.
   const int bands = std::clamp(d.size.height / kBandRows, 1, std::max(1, 2 * cv::getNumThreads()));
-  // The lines' boxes, found once for every band.
-  std::vector<LineBox> boxes(d.strokes.size());
-  for (size_t i = 0; i < d.strokes.size(); ++i)
-    if (covered_as_line(d.strokes[i])) boxes[i] = line_box(d.strokes[i]);
   bool ok = true;
   cv::parallel_for_(cv::Range(0, bands), [&](const cv::Range& r) {
     cv::Mat scratch;
     for (int b = r.start; b < r.end; ++b) {
       const int y0 = d.size.height * b / bands, y1 = d.size.height * (b + 1) / bands;
-      if (!paint_band(alpha, d, y0, y1)) ok = false;
-      alpha.rowRange(y0, y1)
-          .colRange(0, d.size.width)
-          .convertTo(coverage.rowRange(y0, y1), CV_32F, 1.0 / 255.0);
+      if (!reach.cairo) {
+        coverage.rowRange(y0, y1).setTo(0.0f);
+      } else {
+        alpha.rowRange(y0, y1).setTo(0);
+        if (!paint_band(alpha, d, y0, y1, reach.rows)) ok = false;
+        alpha.rowRange(y0, y1)
+            .colRange(0, d.size.width)
+            .convertTo(coverage.rowRange(y0, y1), CV_32F, 1.0 / 255.0);
+      }
       for (size_t i = 0; i < d.strokes.size(); ++i) {
-        const LineBox& box = boxes[i];
+        const LineBox& box = reach.boxes[i];
         if (box.drawn && box.hi.y >= float(y0) && box.lo.y <= float(y1))
           cover_line(coverage, d.strokes[i], box, {y0, y1}, scratch);
       }

@@ -54,15 +54,16 @@ const std::vector<std::pair<double, double>>& unit_circle(int n) {
 }
 
 // Points around primitive i's outline, about one per working px, each weighted by how far the
-// primitive stands in front of what lies just outside it there (0 where it is hidden).
-std::vector<ArcPoint> arc_points(const std::vector<Primitive>& prims, size_t i,
-                                 const LeafLayer& layer, const ArcStyle& s) {
+// primitive stands in front of what lies just outside it there (0 where it is hidden), into
+// `pts` (resized).
+void arc_points(const std::vector<Primitive>& prims, size_t i, const LeafLayer& layer,
+                const ArcStyle& s, std::vector<ArcPoint>& pts) {
   const Primitive& p = prims[i];
   const double perimeter = std::numbers::pi * std::sqrt(2.0 * (p.a * p.a + p.b * p.b));
   const int n = std::clamp(int(std::ceil(perimeter)), 12, kMostArcPoints);
   const float step = step_of(p, s);
   const double qa = p.qa(), qb = p.qb(), qc = p.qc();
-  std::vector<ArcPoint> pts(static_cast<size_t>(n));
+  pts.resize(static_cast<size_t>(n));
   const std::vector<std::pair<double, double>>& circle = unit_circle(n);
   for (int j = 0; j < n; ++j) {
     const double lx = p.a * circle[size_t(j)].first, ly = p.b * circle[size_t(j)].second;
@@ -90,7 +91,6 @@ std::vector<ArcPoint> arc_points(const std::vector<Primitive>& prims, size_t i,
     const float gap = layer.depth.at<float>(y, x) - p.depth;
     a.weight = smoothstep(step * (1.0f - s.fade), step * (1.0f + s.fade), gap);
   }
-  return pts;
 }
 
 // The runs of drawn points, each a stroke of its class whose width follows the weight (so an
@@ -166,9 +166,13 @@ void outline_primitives(const std::vector<Primitive>& prims, const LeafLayer& la
   }
   std::vector<Arcs> part(runs);
   cv::parallel_for_(cv::Range(0, int(runs)), [&](const cv::Range& r) {
+    std::vector<ArcPoint> pts;
     for (int k = r.start; k < r.end; ++k)
-      for (size_t i = n * size_t(k) / runs; i < n * size_t(k + 1) / runs; ++i)
-        if (shown[i]) add_arcs(arc_points(prims, i, layer, s), s, part[size_t(k)].cls);
+      for (size_t i = n * size_t(k) / runs; i < n * size_t(k + 1) / runs; ++i) {
+        if (!shown[i]) continue;
+        arc_points(prims, i, layer, s, pts);
+        add_arcs(pts, s, part[size_t(k)].cls);
+      }
   });
   for (Arcs& a : part)
     for (int c = 0; c < 2; ++c)

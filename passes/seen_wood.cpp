@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
@@ -23,15 +24,18 @@ struct Disc {
   float cx, cy, r, d;
 };
 
+// No wood there (the splat's clear value).
+constexpr float kNone = std::numeric_limits<float>::infinity();
+
 // A wood sample's disc's largest radius, px.
 constexpr float kMostDiscRadius = 8.0f;
 
 // The wood samples' discs in the frame (those in front of the camera), projected in parallel by
-// kDiscRuns runs of the samples, joined in order.
+// kDiscRuns runs of the samples, each run's in order.
 constexpr int kDiscRuns = 64;
 
-std::vector<Disc> wood_discs(const SurfaceSamples& s, const Camera& camera, cv::Size size,
-                             uint32_t wood) {
+std::vector<std::vector<Disc>> wood_discs(const SurfaceSamples& s, const Camera& camera,
+                                          cv::Size size, uint32_t wood) {
   const glm::mat4 view_proj = camera.proj * camera.view;
   // px per scene unit at view depth d: proj[1][1] * h / 2 / d (perspective), without / d (ortho).
   const float focal = camera.proj[1][1] * 0.5f * float(size.height);
@@ -53,10 +57,7 @@ std::vector<Disc> wood_discs(const SurfaceSamples& s, const Camera& camera, cv::
       }
     }
   });
-  std::vector<Disc> discs;
-  for (const std::vector<Disc>& run : runs)
-    discs.insert(discs.end(), run.begin(), run.end());
-  return discs;
+  return runs;
 }
 
 // The discs that reach the frame by the row of their centre (a counting sort): discs[first[y],
@@ -66,7 +67,7 @@ struct DiscRows {
   std::vector<size_t> first;
 };
 
-DiscRows by_row(const std::vector<Disc>& discs, cv::Size size) {
+DiscRows by_row(const std::vector<std::vector<Disc>>& runs, cv::Size size) {
   DiscRows out;
   out.first.assign(size_t(size.height) + 1, 0);
   auto row_of = [&](const Disc& c) {
@@ -75,14 +76,16 @@ DiscRows by_row(const std::vector<Disc>& discs, cv::Size size) {
       return -1;
     return std::clamp(int(std::floor(c.cy)), 0, size.height - 1);
   };
-  for (const Disc& c : discs)
-    if (const int y = row_of(c); y >= 0) ++out.first[size_t(y) + 1];
+  for (const std::vector<Disc>& discs : runs)
+    for (const Disc& c : discs)
+      if (const int y = row_of(c); y >= 0) ++out.first[size_t(y) + 1];
   for (size_t y = 1; y < out.first.size(); ++y)
     out.first[y] += out.first[y - 1];
   std::vector<size_t> next(out.first.begin(), out.first.end() - 1);
   out.discs.resize(out.first.back());
-  for (const Disc& c : discs)
-    if (const int y = row_of(c); y >= 0) out.discs[next[size_t(y)]++] = c;
+  for (const std::vector<Disc>& discs : runs)
+    for (const Disc& c : discs)
+      if (const int y = row_of(c); y >= 0) out.discs[next[size_t(y)]++] = c;
   return out;
 }
 
@@ -124,11 +127,36 @@ cv::Mat splat_wood(const SurfaceSamples& s, const Camera& camera, cv::Size size,
   return z;
 }
 
-// The plant's depth extent in the raster (the covered pixels' nearest and farthest).
-float depth_extent(const cv::Mat& depth) {
-  double lo = 0.0, hi = 0.0;
-  cv::minMaxLoc(depth, &lo, &hi, nullptr, nullptr, depth > 0.0f);
-  return hi > lo ? float(hi - lo) : 0.0f;
+// The wood the raster shows (w.mask: where `id` is the wood's and `depth` covered; w.depth: a
+// copy of `depth`), in one pass; returns the plant's depth extent in the raster (the covered
+// pixels' nearest and farthest).
+float raster_wood(const cv::Mat& id, const cv::Mat& depth, uint32_t wood, SeenWood& w) {
+  // New images (w.depth may share the raster's).
+  w.mask = cv::Mat(depth.size(), CV_8UC1);
+  w.depth = cv::Mat(depth.size(), CV_32FC1);
+  std::mutex mutex;
+  float lo = kNone, hi = -kNone;
+  for_bands(depth.rows, [&](int y0, int y1) {
+    float band_lo = kNone, band_hi = -kNone;
+    for (int y = y0; y < y1; ++y) {
+      const int* ids = id.ptr<int>(y);
+      const float* z = depth.ptr<float>(y);
+      uint8_t* mask = w.mask.ptr<uint8_t>(y);
+      float* out = w.depth.ptr<float>(y);
+      for (int x = 0; x < depth.cols; ++x) {
+        const bool covered = z[x] > 0.0f;
+        mask[x] = covered && ids[x] == int(wood) ? 255 : 0;
+        out[x] = z[x];
+        if (!covered) continue;
+        band_lo = std::min(band_lo, z[x]);
+        band_hi = std::max(band_hi, z[x]);
+      }
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    lo = std::min(lo, band_lo);
+    hi = std::max(hi, band_hi);
+  });
+  return hi > lo ? float(double(hi) - double(lo)) : 0.0f;
 }
 
 // Without samples: gaps up to `gap` px that the plant fills, closed; their depth the farthest
@@ -158,9 +186,7 @@ SeenWood seen_wood(const WoodImages& in, uint32_t wood, double detail) {
   if (wood == 0 || in.id.empty()) return w;
   expect_image(in.depth, CV_32FC1, {}, "depth");
   expect_image(in.id, CV_32SC1, in.depth.size(), "id");
-  w.mask = (in.id == int(wood)) & (in.depth > 0.0f);
-  w.depth = in.depth.clone();
-  w.cover = kWoodCover * depth_extent(in.depth);
+  w.cover = kWoodCover * raster_wood(in.id, in.depth, wood, w);
   if (!in.samples || in.samples->clusters.size() != in.samples->size()) {
     close_gaps(in.depth, std::max(2.0, 0.3 * detail * reference_scale(in.depth.size())), w);
     return w;
@@ -176,7 +202,7 @@ SeenWood seen_wood(const WoodImages& in, uint32_t wood, double detail) {
       uint8_t* mask = w.mask.ptr<uint8_t>(y);
       float* depth = w.depth.ptr<float>(y);
       for (int x = 0; x < in.depth.cols; ++x) {
-        if (mask[x] || !(shown[x] > 0.0f) || !std::isfinite(under[x])) continue;
+        if (!(under[x] < kNone) || mask[x] || !(shown[x] > 0.0f)) continue;  // most: no splat
         if (shown[x] < under[x] - cover) continue;  // foliage clearly in front
         mask[x] = 255;
         depth[x] = under[x];

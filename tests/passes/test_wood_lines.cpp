@@ -141,7 +141,8 @@ TEST(WoodLines, SameFrameSameStrokes) {
 
 TEST(WoodLines, ASplatMadeBeforeTheRasterSeesTheSameWood) {
   // The wood's samples (a trunk, 0.05 apart) splatted before the raster (the pass "wood-splat")
-  // complete the seen wood exactly as splatting them in seen_wood does.
+  // complete the seen wood exactly as splatting them in seen_wood does, without changing the
+  // raster's depth.
   SurfaceSamples samples;
   samples.spacing = 0.05f;
   for (int i = 0; i <= 60; ++i)
@@ -173,7 +174,11 @@ TEST(WoodLines, ASplatMadeBeforeTheRasterSeesTheSameWood) {
   in.depth = depth;
   in.camera = camera;
   in.samples = std::make_shared<const SurfaceSamples>(samples);
+  const cv::Mat shown = depth.clone();
   const SeenWood here = seen_wood(in, kWood, 10.0);
+  // The raster's depth, which other passes read, is left as it was (the wood's depth is a copy).
+  EXPECT_EQ(cv::norm(depth, shown, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(here.depth, shown, cv::NORM_INF), 0.0);
   in.splat = splat;
   const SeenWood before = seen_wood(in, kWood, 10.0);
   EXPECT_GT(cv::countNonZero(here.mask), 500);

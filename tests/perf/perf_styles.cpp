@@ -49,6 +49,10 @@ struct Rig {
   std::unique_ptr<Rasterizer> raster;
   std::shared_ptr<const VertexShading> shading;
   Camera camera;
+  // The scene's foliage diagonal and framing sphere: made once, as a turntable makes them
+  // (styles/sheet.cpp make_sheet_scene), not in each frame.
+  double foliage_diagonal = 0.0;
+  Sphere scene_sphere;
   // Scene-level, made once (as a turntable's frames share them): the surface samples and the
   // foliage's pieces the ink styles project each frame.
   std::shared_ptr<SurfaceSampleMemo> samples = std::make_shared<SurfaceSampleMemo>();
@@ -59,7 +63,9 @@ struct Rig {
     raster->upload(scene);
     shading = std::make_shared<const VertexShading>(vertex_shading(
         compute_foliage_illumination(scene, FoliageParams{}), KaEncoding::Attribute));
-    camera = make_orbit_camera(scene.framing_sphere(), OrbitParams{}, kSize, kSize);
+    foliage_diagonal = scene.bounds(Role::Foliage).diagonal();
+    scene_sphere = scene.framing_sphere();
+    camera = make_orbit_camera(scene_sphere, OrbitParams{}, kSize, kSize);
   }
 };
 
@@ -122,9 +128,9 @@ void render_frame(Rig& r, const std::string& name, const Style& style) {
   context.lighting = setup.lighting;
   context.view = setup.camera.view;
   context.background = setup.request.background;
-  context.foliage_diagonal = r.scene.bounds(Role::Foliage).diagonal();
+  context.foliage_diagonal = r.foliage_diagonal;
   context.rasterizer = r.raster.get();  // toon.cast_shadows renders the key light's shadow map
-  context.scene_sphere = r.scene.framing_sphere();
+  context.scene_sphere = r.scene_sphere;
   context.camera = setup.camera;
   const ImageHandle out = name == "raster" ? gb.color : style.build(graph, gb, context).image;
   graph.present(out);
