@@ -31,8 +31,9 @@
 // Reads (render graph): "leaf-pieces", "color" (CV_8UC4, alpha = coverage: the tone),
 // "seen-wood" and "surface-samples" (the key light's shadow map).
 // Writes "leaf-primitives" (the primitives and the key light reaching them, which need no
-// raster), "leaf-tone", "leaf-layer" (a LeafLayer) and "wood-layer" (the same with the wood
-// alone, for hatching the wood beside the foliage's painting).
+// raster), "leaf-tone", "wood-layer" (the layer with the wood alone, for hatching the wood beside
+// the foliage's painting), "leaf-paint" (the primitives painted over it, beside the tone) and
+// "leaf-layer" (a LeafLayer).
 #pragma once
 
 #include <cstdint>
