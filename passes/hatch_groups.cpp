@@ -280,13 +280,13 @@ std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regio
 // of their run.
 constexpr int kRankBins = 1 << 16;
 
-cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
+cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color, const cv::Mat& darkness) {
   const cv::Mat wood = layer.front == kWoodFront;
   cv::Mat rank(layer.front.size(), CV_32FC1, cv::Scalar(0));
   const int n = cv::countNonZero(wood);
   if (n == 0) return rank;
-  // The leaf layer's darkness when it has it (the same image), else the colour's.
-  cv::Mat dark = layer.darkness;
+  // The leaf tone's darkness when given (the same image), else the colour's.
+  cv::Mat dark = darkness;
   if (dark.empty()) {
     dark = tone_darkness(color);
     cv::resize(dark, dark, layer.front.size(), 0, 0, cv::INTER_AREA);
@@ -318,7 +318,8 @@ cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color) {
 }  // namespace
 
 StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const cv::Mat& color,
-                           const PenParams& p, double detail, HatchWhat what) {
+                           const PenParams& p, double detail, HatchWhat what,
+                           const cv::Mat& darkness) {
   StrokeDrawing d;
   d.size = layer.drawing.size;
   d.color = layer.drawing.color;
@@ -346,8 +347,8 @@ StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const 
   const size_t clumps = groups.size();
   if (what.wood) {
     const std::vector<Group> wood = wood_groups(layer, kWoodLabels, regions);
-    const cv::Mat wood_tone =
-        tone_of(wood_rank(layer, color), layer.front == kWoodFront, 0.5 * detail * scale / f, p);
+    const cv::Mat wood_tone = tone_of(wood_rank(layer, color, darkness), layer.front == kWoodFront,
+                                      0.5 * detail * scale / f, p);
     wood_tone.copyTo(tone, layer.front == kWoodFront);
     groups.insert(groups.end(), wood.begin(), wood.end());
   }
@@ -371,14 +372,9 @@ Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> la
       "hatching", reads, {out},
       [=](PassContext& ctx) {
         const cv::Mat normals = what.foliage ? ctx.read<cv::Mat>(normal) : cv::Mat();
-        const LeafLayer& read = ctx.read<LeafLayer>(layer);
-        auto hatch = [&](const LeafLayer& l) {
-          ctx.write(out, hatch_groups(l, normals, ctx.read<cv::Mat>(color), p, detail, what));
-        };
-        if (!tone.valid() || !read.darkness.empty()) return hatch(read);
-        LeafLayer shaded = read;  // the wood layer: no drawing to copy
-        shaded.darkness = ctx.read<LeafTone>(tone).darkness;
-        hatch(shaded);
+        const cv::Mat darkness = tone.valid() ? ctx.read<LeafTone>(tone).darkness : cv::Mat();
+        ctx.write(out, hatch_groups(ctx.read<LeafLayer>(layer), normals, ctx.read<cv::Mat>(color),
+                                    p, detail, what, darkness));
       },
       RenderGraph::Threads::Any);
   return out;

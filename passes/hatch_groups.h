@@ -23,7 +23,7 @@
 //
 // Reads a LeafLayer (its front, rank, clusters, centres and areas), the "normal" target
 // (CV_32FC3 view space, the frame's size; only when the crown is hatched: empty otherwise) and
-// the "color" target (the wood's shading); writes
+// the "color" target (the wood's shading; or, given, "leaf-tone"'s darkness of it); writes
 // LineClass::Tone strokes in output px.
 #pragma once
 
@@ -45,11 +45,14 @@ struct HatchWhat {
 // detail: ink.detail, px at 1024 px. Hatching is drawn whatever pen.tone says (the caller
 // decides); pen.spacing, length, width, angle, lightest, darkest, gamma, cross, opacity and seed
 // shape it.
+// darkness: the colour's darkness at the layer's working size (LeafTone::darkness), or empty:
+// made here from `color`.
 StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const cv::Mat& color,
-                           const PenParams& p, double detail, HatchWhat what = {});
+                           const PenParams& p, double detail, HatchWhat what = {},
+                           const cv::Mat& darkness = {});
 
 // Adds the pass "hatching" and returns its strokes. tone (optional): "leaf-tone", whose darkness
-// ranks the wood where the layer has none (the wood layer).
+// ranks the wood (else it is made from the colour).
 Handle<StrokeDrawing> add_hatch_groups_pass(RenderGraph& g, Handle<LeafLayer> layer,
                                             ImageHandle normal, ImageHandle color,
                                             const PenParams& p, double detail, HatchWhat what = {},

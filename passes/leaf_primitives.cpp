@@ -400,7 +400,6 @@ LeafLayer leaf_layer(const LeafPaint& paint, const LeafTone& tone, const LeafPar
   const double scale = reference_scale(paint.layer.drawing.size);
   const double detail = lines.detail * scale;  // px
   LeafLayer layer = paint.layer;
-  layer.darkness = tone.darkness;
   std::vector<Primitive> prims = paint.prims;
   rank_primitives(tone.dark, prims, layer);
   ArcStyle s;

@@ -97,9 +97,6 @@ struct LeafLayer {
   // At the working resolution: the front primitive's index + 1 (kWoodFront where the raster's
   // wood is in front, 0 where nothing is), its view depth, the tone rank (0 off the plant).
   cv::Mat front, depth, rank;
-  // The colour's darkness at the working resolution, not smoothed (ToneRank::darkness; empty
-  // when the frame shows no plant): the wood's tone is ranked by it.
-  cv::Mat darkness;
   std::vector<uint32_t> clusters;    // per primitive, its leaf cluster
   std::vector<cv::Point2f> centres;  // per primitive, its centre (working px)
   std::vector<float> areas;          // per primitive, its leaves' area (scene units²)
@@ -146,7 +143,9 @@ struct LeafFrame {
 // The primitives' tone, from the raster's colour.
 struct LeafTone {
   std::vector<float> dark;  // per primitive, its darkness in [0, 1] (colour and shadow)
-  cv::Mat darkness;         // LeafLayer::darkness
+  // The colour's darkness at the working resolution, not smoothed (ToneRank::darkness; empty
+  // when the frame shows no plant): the wood's hatching ranks the wood's tone by it.
+  cv::Mat darkness;
 };
 
 // The frame's size is the colour's, or without one the camera's. lines: ink.detail.
@@ -156,13 +155,13 @@ LeafFrame leaf_frame(const LeafImages& in, const LeafParams& p, const InkLinePar
 LeafTone leaf_tone(const LeafFrame& frame, const cv::Mat& color);
 
 // The layer with only the wood painted (front kWoodFront where `wood` is seen, 0 elsewhere; no
-// primitives, no drawing, no darkness): what the foliage is painted over.
+// primitives, no drawing): what the foliage is painted over.
 LeafLayer wood_layer(const LeafFrame& frame, const SeenWood& wood, const EdgeParams& edges);
 
 // A frame's primitives painted behind the wood, before their tone is known.
 struct LeafPaint {
   // `wood` with the primitives painted (front, depth), and their depth range, clusters, centres
-  // and areas; no rank, drawing or darkness yet.
+  // and areas; no rank or drawing yet.
   LeafLayer layer;
   std::vector<Primitive> prims;  // the frame's, with their plant's extent (rank not set)
 };
@@ -191,7 +190,7 @@ struct LeafResources {
 struct LeafLayers {
   Handle<LeafLayer> layer;  // "leaf-layer"
   Handle<LeafLayer> wood;   // "wood-layer": wood_layer
-  Handle<LeafTone> tone;    // "leaf-tone": the darkness the wood layer lacks
+  Handle<LeafTone> tone;    // "leaf-tone": its darkness ranks the wood's hatching
 };
 
 // Adds the passes "leaf-primitives" (a LeafFrame, made while the raster draws), "leaf-tone" (a

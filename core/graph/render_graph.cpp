@@ -211,6 +211,7 @@ class RenderGraph::Runner {
 
   void run() {
     std::unique_lock<std::mutex> lock(m_mutex);
+    bool stuck = false;  // passes left, none running and none ready
     while (m_schedule.left > 0 && !m_error) {
       launch_ready();
       const int pass = take(Threads::Main);
@@ -222,7 +223,7 @@ class RenderGraph::Runner {
         continue;
       }
       if (m_flying == 0) {
-        m_error = attempt_check(false, "render graph: no pass can run");
+        stuck = true;
         break;
       }
       m_changed.wait(lock);
@@ -231,6 +232,7 @@ class RenderGraph::Runner {
     lock.unlock();
     m_workers.clear();  // their threads have ended their work
     if (m_error) std::rethrow_exception(m_error);
+    SYLVA_CHECK(!stuck, "render graph: no pass can run");
   }
 
  private:
@@ -256,15 +258,6 @@ class RenderGraph::Runner {
         --m_flying;
         m_error = std::current_exception();
       }
-    }
-  }
-  // SYLVA_CHECK's exception when `cond` fails, else null.
-  static std::exception_ptr attempt_check(bool cond, const std::string& message) {
-    try {
-      SYLVA_CHECK(cond, message);
-      return nullptr;
-    } catch (...) {
-      return std::current_exception();
     }
   }
   // Runs `pass`; its exception, or an interrupt before it (core/interrupt.h), as the result.
