@@ -45,10 +45,12 @@ std::pair<float, float> stroke_rows(const Stroke& s) {
 }
 
 // A stroke rasterize_strokes covers itself (line_coverage) rather than through cairo: a line of
-// one width. Cairo strokes these exactly but slowly (its stroker and scan converter cost about 1
-// µs per point); a branch's thousands of hairlines are the ink frame's longest pass with it.
+// one width, or tapered (a width per point). Cairo strokes these exactly but slowly (its stroker
+// and scan converter cost about 1 µs per point); a branch's thousands of hairlines are the ink
+// frame's longest pass with it.
 bool covered_as_line(const Stroke& s) {
-  return !s.filled && s.constant_width() && s.points.size() > 1;
+  return !s.filled && s.points.size() > 1 &&
+         (s.constant_width() || s.widths.size() == s.points.size());
 }
 
 // Paints d's strokes (those covered_as_line too where `lines`) whose rows can reach
@@ -105,25 +107,36 @@ std::pair<int, int> pixel_span(float lo, float hi, int n) {
   return {int(a), int(b)};
 }
 
-// The coverage of the segment [a, b], `half` px to either side, kept in `cover` where it is
-// more than `cover` holds; `cover`'s pixel (0, 0) is the frame's `origin`.
-void cover_segment(cv::Mat& cover, cv::Point origin, glm::vec2 a, glm::vec2 b, float half) {
-  const float reach = half + 1.0f;
-  const glm::vec2 o(origin.x, origin.y), lo = glm::min(a, b) - reach - o,
-                                         hi = glm::max(a, b) + reach - o;
+// A line's own coverage over its box: `cols` x `rows` pixels, row-major, its pixel (0, 0) the
+// frame's `origin`. Plain memory: a frame's thousands of short lines each clear and composite
+// one, and an image's per-call costs would outweigh their few pixels.
+struct Patch {
+  float* px = nullptr;
+  int cols = 0, rows = 0;
+  cv::Point origin;
+};
+
+// The coverage of the segment [a, b], its half width `half_a` at a and `half_b` at b and
+// between them as far along as a pixel's nearest point, kept in `cover` where it is more than
+// `cover` holds.
+void cover_segment(Patch& cover, glm::vec2 a, glm::vec2 b, float half_a, float half_b) {
+  const float most = std::max(half_a, half_b), reach = most + 1.0f;
+  const glm::vec2 o(cover.origin.x, cover.origin.y), lo = glm::min(a, b) - reach - o,
+                                                     hi = glm::max(a, b) + reach - o;
   const auto [x0, x1] = pixel_span(lo.x, hi.x, cover.cols);
   const auto [y0, y1] = pixel_span(lo.y, hi.y, cover.rows);
   const glm::vec2 ab = b - a;
   const float len2 = glm::dot(ab, ab), inv = len2 > 1e-12f ? 1.0f / len2 : 0.0f;
-  const float far2 = (half + 0.5f) * (half + 0.5f);  // no coverage from this squared distance
+  const float far2 = (most + 0.5f) * (most + 0.5f);  // no coverage from this squared distance
+  const float taper = half_b - half_a;
   for (int y = y0; y < y1; ++y) {
-    float* row = cover.ptr<float>(y);
-    const float py = float(origin.y + y) + 0.5f - a.y;
+    float* row = cover.px + size_t(y) * size_t(cover.cols);
+    const float py = float(cover.origin.y + y) + 0.5f - a.y;
     for (int x = x0; x < x1; ++x) {
-      const float px = float(origin.x + x) + 0.5f - a.x;
+      const float px = float(cover.origin.x + x) + 0.5f - a.x;
       const float t = std::clamp((px * ab.x + py * ab.y) * inv, 0.0f, 1.0f);
       const float ex = px - t * ab.x, ey = py - t * ab.y, d2 = ex * ex + ey * ey;
-      if (d2 < far2) row[x] = std::max(row[x], cross_coverage(std::sqrt(d2), half));
+      if (d2 < far2) row[x] = std::max(row[x], cross_coverage(std::sqrt(d2), half_a + t * taper));
     }
   }
 }
@@ -136,7 +149,10 @@ struct LineBox {
 };
 
 LineBox line_box(const Stroke& s) {
-  const float reach = 0.5f * s.width + 1.0f;
+  float width = s.width;
+  for (float w : s.widths)
+    width = std::isfinite(w) ? std::max(width, w) : w;
+  const float reach = 0.5f * width + 1.0f;
   LineBox box{s.points[0], s.points[0], std::isfinite(reach) && s.opacity > 0.0f};
   for (const glm::vec2& q : s.points) {
     box.lo = glm::min(box.lo, q);
@@ -153,21 +169,24 @@ LineBox line_box(const Stroke& s) {
 // cairo's OVER): each pixel covered as by its nearest segment, so the line's joins and ends are
 // round, as cairo's. `scratch` holds the stroke's own coverage over its box.
 void cover_line(cv::Mat& coverage, const Stroke& s, const LineBox& box, cv::Range rows,
-                cv::Mat& scratch) {
-  const float half = 0.5f * s.width, opacity = std::min(s.opacity, 1.0f);
+                std::vector<float>& scratch) {
+  const float opacity = std::min(s.opacity, 1.0f);
   const auto [x0, x1] = pixel_span(box.lo.x, box.hi.x, coverage.cols);
   const auto [y0, y1] = pixel_span(std::max(box.lo.y, float(rows.start)),
                                    std::min(box.hi.y, float(rows.end)), coverage.rows);
   if (x0 >= x1 || y0 >= y1) return;
-  scratch.create(y1 - y0, x1 - x0, CV_32F);
-  scratch.setTo(0.0f);
+  const size_t area = size_t(y1 - y0) * size_t(x1 - x0);
+  if (scratch.size() < area) scratch.resize(area);
+  std::fill_n(scratch.begin(), area, 0.0f);
+  Patch patch{scratch.data(), x1 - x0, y1 - y0, {x0, y0}};
   const size_t n = s.points.size();
+  auto half = [&](size_t i) { return 0.5f * (s.constant_width() ? s.width : s.widths[i]); };
   for (size_t i = 0; i + 1 < n + (s.closed ? 1 : 0); ++i)
-    cover_segment(scratch, {x0, y0}, s.points[i], s.points[(i + 1) % n], half);
+    cover_segment(patch, s.points[i], s.points[(i + 1) % n], half(i), half((i + 1) % n));
   for (int y = y0; y < y1; ++y) {
     float* dst = coverage.ptr<float>(y) + x0;
-    const float* src = scratch.ptr<float>(y - y0);
-    for (int x = 0; x < x1 - x0; ++x)
+    const float* src = patch.px + size_t(y - y0) * size_t(patch.cols);
+    for (int x = 0; x < patch.cols; ++x)
       dst[x] += src[x] * opacity * (1.0f - dst[x]);
   }
 }
@@ -237,7 +256,7 @@ cv::Mat rasterize_strokes(const StrokeDrawing& d) {
   const int bands = std::clamp(d.size.height / kBandRows, 1, std::max(1, 2 * cv::getNumThreads()));
   bool ok = true;
   cv::parallel_for_(cv::Range(0, bands), [&](const cv::Range& r) {
-    cv::Mat scratch;
+    std::vector<float> scratch;
     for (int b = r.start; b < r.end; ++b) {
       const int y0 = d.size.height * b / bands, y1 = d.size.height * (b + 1) / bands;
       if (!reach.cairo) {

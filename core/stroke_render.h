@@ -3,12 +3,13 @@
 // stroke with per-point widths, and a dot, is filled as its outline (stroke_outline, non-zero
 // rule). Each stroke is painted on its own with its opacity, over the strokes before it.
 //
-// The raster covers the lines of one width itself: each pixel by its share of the line's width
-// across it at its nearest segment (so joins and ends are round), the stroke's own segments
-// merged by the most, the strokes composited as cairo's OVER. For the thin lines a drawing is
-// made of this agrees with cairo's exact stroking to about 1 % of the ink, several times faster
-// (cairo spends about a microsecond a point on them: a willow's 5,000 branch outlines were the
-// ink frame's longest pass). Tapered strokes, dots and fills are cairo's.
+// The raster covers the lines itself, of one width or tapered: each pixel by its share of the
+// line's width across it at its nearest segment (so joins and ends are round; a tapered
+// segment's width taken there, between its ends'), the stroke's own segments merged by the
+// most, the strokes composited as cairo's OVER. For the thin lines a drawing is made of this
+// agrees with cairo's exact stroking to about 1 % of the ink, several times faster (cairo
+// spends about a microsecond a point on them: a willow's 5,000 branch outlines were the ink
+// frame's longest pass). Dots and fills are cairo's.
 #pragma once
 
 #include <opencv2/core.hpp>

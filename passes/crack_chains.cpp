@@ -63,7 +63,12 @@ class CornerGraph {
   // The corners that touch a crack, row by row (y, then x).
   std::vector<cv::Point> corners() const {
     std::vector<cv::Point> out;
-    cv::findNonZero(m_degree, out);
+    out.reserve(size_t(cv::countNonZero(m_degree)));
+    for (int y = 0; y < m_degree.rows; ++y) {
+      const uint8_t* row = m_degree.ptr<uint8_t>(y);
+      for (int x = 0; x < m_degree.cols; ++x)
+        if (row[x] != 0) out.emplace_back(x, y);
+    }
     return out;
   }
   int width() const { return m_w; }

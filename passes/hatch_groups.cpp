@@ -151,17 +151,21 @@ void hatch_all(const std::vector<Group>& groups, size_t crossed, const cv::Mat& 
     std::move(strokes.begin(), strokes.end(), std::back_inserter(out));
 }
 
-// Tone t in [0, 1] from a rank image (0 off the regions), smoothed over the regions.
+// Tone t in [0, 1] from a rank image (0 off the regions), smoothed over the regions: within the
+// regions' box (0 beyond it), the blur reading the images around it as the whole image's would.
 cv::Mat tone_of(const cv::Mat& rank, const cv::Mat& inside, double sigma, const PenParams& p) {
+  cv::Mat t(rank.size(), CV_32FC1, cv::Scalar(0));
+  const cv::Rect box = cv::boundingRect(inside);
+  if (box.empty()) return t;
   cv::Mat mask;
   inside.convertTo(mask, CV_32F, 1.0 / 255.0);
-  const cv::Mat r = normalised_blur(rank.mul(mask), mask, sigma);
-  cv::Mat t(rank.size(), CV_32FC1);
+  const cv::Mat weighted = rank.mul(mask);
+  const cv::Mat r = normalised_blur(weighted(box), mask(box), sigma);
   const float lo = p.lightest, hi = std::max(p.darkest, p.lightest + 1e-3f);
   for_bands(r.rows, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
       const float* from = r.ptr<float>(y);
-      float* to = t.ptr<float>(y);
+      float* to = t.ptr<float>(y + box.y) + box.x;
       for (int x = 0; x < r.cols; ++x) {
         // pen.gamma > 0: no tone and full tone stay as they are (most of the frame is paper).
         const float c = std::clamp((from[x] - lo) / (hi - lo), 0.0f, 1.0f);

@@ -20,7 +20,9 @@ cv::Mat tone_darkness(const cv::Mat& color);
 
 struct ToneRank {
   cv::Mat plant;  // CV_8UC1 at the working size, 255 = on the plant (area coverage >= 1/2)
-  cv::Mat dark;   // CV_32FC1 the smoothed darkness, [0, 1]
+  // CV_32FC1 the smoothed darkness, [0, 1]; unranked with a wide Gaussian, at half the working
+  // size (dark_near reads it bilinearly).
+  cv::Mat dark;
   // CV_32FC1 the darkness area-averaged to the working size, not smoothed (0 off the plant).
   cv::Mat darkness;
   // The plant's smoothed darkness, ascending (empty unless ranked): what a rank is taken among.
@@ -29,7 +31,7 @@ struct ToneRank {
   // The rank of the smoothed darkness at `at` (px at the working size, clamped to it), on the
   // plant or beside it.
   float rank_near(cv::Point2f at) const;
-  // The smoothed darkness at `at` (clamped to the image).
+  // The smoothed darkness at `at` (px at the working size, clamped to it).
   float dark_near(cv::Point2f at) const;
   float rank_of(float darkness) const;
 };
@@ -37,7 +39,8 @@ struct ToneRank {
 // At `size` (a working resolution of the colour's frame): the darkness area-averaged to `size`,
 // smoothed over the plant by a Gaussian of `sigma` px (at `size`), and, when `ranked`, the
 // plant's darkness sorted for its ranks (without it rank_near and rank_of answer 0: for callers
-// that read dark_near only). Empty when no pixel is on the plant.
+// that read dark_near only; a Gaussian of sigma >= 3 px is then computed at half the size, a
+// quarter of the work). Empty when no pixel is on the plant.
 ToneRank tone_rank(const cv::Mat& color, cv::Size size, double sigma, bool ranked = true);
 
 }  // namespace sylva

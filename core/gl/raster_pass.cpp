@@ -68,7 +68,7 @@ GBufferHandles add_raster_pass(RenderGraph& graph, const RasterSetup& setup) {
       "raster", reads, {h.color, h.normal, h.depth, h.position, h.id, h.ka, h.albedo, h.ao},
       [h, setup](PassContext& ctx) {
         if (setup.shading.valid())
-          setup.rasterizer->set_vertex_shading(*ctx.read(setup.shading));
+          setup.rasterizer->set_vertex_shading(ctx.read(setup.shading));
         else if (setup.own_shading)
           setup.rasterizer->restore_vertex_shading();
         RasterRequest request = setup.request;

@@ -76,7 +76,8 @@ struct Rasterizer::Impl {
   std::vector<char> own_outward;
   std::vector<std::string> mesh_names;
   bool shading_replaced = false;
-  std::map<uint32_t, RasterProgram> programs;  // by target mask | alpha test << 16
+  std::shared_ptr<const VertexShading> kept_shading;  // in place since set_vertex_shading
+  std::map<uint32_t, RasterProgram> programs;         // by target mask | alpha test << 16
   GLuint fbo = 0;
   GLuint depth_texture = 0;
   std::array<GLuint, kSlots> slot_textures{};
@@ -105,6 +106,7 @@ struct Rasterizer::Impl {
     own_outward.clear();
     mesh_names.clear();
     shading_replaced = false;
+    kept_shading.reset();
   }
 
   void release_fbo() {
@@ -383,6 +385,7 @@ void Rasterizer::set_lod(const Scene& scene, const std::vector<PlantLod>& lods) 
   Impl& s = *m_impl;
   s.context.make_current();
   s.lod.release();
+  s.kept_shading.reset();  // the new levels have the scene's own normals
   if (!scene.instanced() || lods.empty()) return;
   s.lod.upload(scene, lods);
   std::vector<size_t> triangles;
@@ -397,9 +400,17 @@ void Rasterizer::set_lod(const Scene& scene, const std::vector<PlantLod>& lods) 
   s.instances.set_levels(triangles, levels);
 }
 
+void Rasterizer::set_vertex_shading(std::shared_ptr<const VertexShading> shading) {
+  SYLVA_CHECK(shading != nullptr, "set_vertex_shading without shading");
+  if (shading == m_impl->kept_shading) return;
+  set_vertex_shading(*shading);
+  m_impl->kept_shading = std::move(shading);
+}
+
 void Rasterizer::set_vertex_shading(const VertexShading& shading) {
   Impl& s = *m_impl;
   s.context.make_current();
+  s.kept_shading.reset();
   s.lod.set_shading(shading);
   for (GpuMesh& m : s.meshes) {
     const size_t i = m.scene_index;
@@ -415,6 +426,7 @@ void Rasterizer::set_vertex_shading(const VertexShading& shading) {
 void Rasterizer::restore_vertex_shading() {
   Impl& s = *m_impl;
   if (!s.shading_replaced) return;
+  s.kept_shading.reset();
   s.context.make_current();
   for (GpuMesh& m : s.meshes) {
     const size_t i = m.scene_index;

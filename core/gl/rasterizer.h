@@ -75,6 +75,9 @@ class Rasterizer {
   // Replaces the uploaded normals/ka of the meshes `shading` covers (and of their levels of
   // detail); the rest keep theirs.
   void set_vertex_shading(const VertexShading& shading);
+  // The same, kept: a second call with the shading in place (the same object, nothing replaced
+  // since) uploads nothing, so a turntable's frames share one upload.
+  void set_vertex_shading(std::shared_ptr<const VertexShading> shading);
   // Puts the uploaded scene's own normals and ka back after set_vertex_shading (nothing to do
   // when they were not replaced).
   void restore_vertex_shading();

@@ -177,6 +177,43 @@ TEST(Raster, KaAttributeScaledNormalsAndReplacedShading) {
   EXPECT_THROW(r.set_vertex_shading(shading), InputError);
 }
 
+// Shading kept by pointer is not uploaded twice, but is applied again once the scene's own
+// normals are back (restore_vertex_shading) or replaced by other shading.
+TEST(Raster, KeptShadingIsAppliedAgainAfterAnythingReplacedIt) {
+  Material white;
+  white.base_color = glm::vec4(1.0f);
+  const Mesh quad = make_quad(1.0f, 0.0f, 0.5f);
+  const Scene s = scene_of({quad}, white);
+  Rasterizer r(gl());
+  r.upload(s);
+  const RasterRequest req = request_of(Target::Ka);
+  auto ka_now = [&] {
+    return r.render(front_camera(s, 16), ambient_only(0.8f), req).ka.at<float>(8, 8);
+  };
+  auto shading_of = [&](float length) {
+    auto v = std::make_shared<VertexShading>();
+    v->normals = {std::vector<glm::vec3>(quad.positions.size(), glm::vec3(0, 0, length))};
+    return std::shared_ptr<const VertexShading>(v);
+  };
+  const auto kept = shading_of(0.75f);
+  r.set_vertex_shading(kept);
+  EXPECT_NEAR(ka_now(), 0.75f, 1e-5f);
+  r.set_vertex_shading(kept);
+  EXPECT_NEAR(ka_now(), 0.75f, 1e-5f);
+  r.restore_vertex_shading();
+  EXPECT_NEAR(ka_now(), 0.5f, 1e-5f);
+  r.set_vertex_shading(kept);
+  EXPECT_NEAR(ka_now(), 0.75f, 1e-5f);
+  r.set_vertex_shading(*shading_of(0.25f));  // not kept: the same object next is applied
+  EXPECT_NEAR(ka_now(), 0.25f, 1e-5f);
+  r.set_vertex_shading(kept);
+  EXPECT_NEAR(ka_now(), 0.75f, 1e-5f);
+  r.upload(s);
+  EXPECT_NEAR(ka_now(), 0.5f, 1e-5f);
+  r.set_vertex_shading(kept);
+  EXPECT_NEAR(ka_now(), 0.75f, 1e-5f);
+}
+
 // A 256^2 texture whose alpha is a disc of radius 0.4 (uv units), opaque square otherwise.
 Scene masked_quad_scene(AlphaMode mode) {
   Scene s = scene_of({make_quad(1.0f, 0.0f)});
