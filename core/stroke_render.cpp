@@ -120,7 +120,8 @@ struct Patch {
 // between them as far along as a pixel's nearest point, kept in `cover` where it is more than
 // `cover` holds.
 void cover_segment(Patch& cover, glm::vec2 a, glm::vec2 b, float half_a, float half_b) {
-  const float most = std::max(half_a, half_b), reach = most + 1.0f;
+  // A pixel is covered only when its centre is nearer than `most` + 1/2 to the segment.
+  const float most = std::max(half_a, half_b), reach = most + 0.5f;
   const glm::vec2 o(cover.origin.x, cover.origin.y), lo = glm::min(a, b) - reach - o,
                                                      hi = glm::max(a, b) + reach - o;
   const auto [x0, x1] = pixel_span(lo.x, hi.x, cover.cols);
@@ -141,7 +142,7 @@ void cover_segment(Patch& cover, glm::vec2 a, glm::vec2 b, float half_a, float h
   }
 }
 
-// A line's points' extent grown by its half width and a pixel of antialiasing: what it can
+// A line's points' extent grown by its half width and half a pixel: what it can
 // touch. Not drawn when a point or the width is not finite, or the opacity is nothing.
 struct LineBox {
   glm::vec2 lo{0.0f}, hi{0.0f};
@@ -152,7 +153,7 @@ LineBox line_box(const Stroke& s) {
   float width = s.width;
   for (float w : s.widths)
     width = std::isfinite(w) ? std::max(width, w) : w;
-  const float reach = 0.5f * width + 1.0f;
+  const float reach = 0.5f * width + 0.5f;
   LineBox box{s.points[0], s.points[0], std::isfinite(reach) && s.opacity > 0.0f};
   for (const glm::vec2& q : s.points) {
     box.lo = glm::min(box.lo, q);
