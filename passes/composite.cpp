@@ -114,7 +114,11 @@ ImageHandle add_paper_pass(RenderGraph& g, cv::Size size, const PaperParams& p) 
   SYLVA_CHECK(size.width > 0 && size.height > 0, "paper: empty size");
   const auto out = g.resource<cv::Mat>("paper");
   g.add_pass(
-      "paper", {}, {out}, [p, size, out](PassContext& ctx) { ctx.write(out, make_paper(size, p)); },
+      "paper", {}, {out},
+      [p, size, out](PassContext& ctx) {
+        // Without grain the sheet is flat: one pixel, which composite_ink reads everywhere.
+        ctx.write(out, make_paper(p.grain > 0.0f ? size : cv::Size(1, 1), p));
+      },
       RenderGraph::Threads::Any);
   return out;
 }
@@ -149,7 +153,10 @@ struct InkComposite {
 template <bool kColor, bool kWash, bool kTransparent>
 void composite_row(const InkComposite& in, int y, cv::Vec4b* o) {
   const float* l = in.lines.ptr<float>(y);
-  const cv::Vec3f* pp = in.paper.ptr<cv::Vec3f>(y);
+  // A flat sheet is one pixel, read at every x.
+  const bool flat = in.paper.size() != in.lines.size();
+  const cv::Vec3f* pp = in.paper.ptr<cv::Vec3f>(flat ? 0 : y);
+  const int step = flat ? 0 : 1;
   const cv::Vec4b* c = kColor ? in.coverage_or_color.ptr<cv::Vec4b>(y) : nullptr;
   const float* m = kColor ? nullptr : in.coverage_or_color.ptr<float>(y);
   // The last ground encoded: a flat sheet (no grain, no wash) is encoded once a row.
@@ -159,13 +166,13 @@ void composite_row(const InkComposite& in, int y, cv::Vec4b* o) {
     float a = 0.0f;
     if constexpr (kWash || kTransparent)
       a = kColor ? c[x][3] / 255.0f : std::clamp(m[x], 0.0f, 1.0f);
-    cv::Vec3f ground = pp[x];
+    cv::Vec3f ground = pp[x * step];
     if constexpr (kWash) {
       const cv::Vec3f shaded =
           kColor ? cv::Vec3f(in.decode[c[x][0]], in.decode[c[x][1]], in.decode[c[x][2]]) : in.line;
       const float wash = in.fill * a;
       for (int k = 0; k < 3; ++k)
-        ground[k] = pp[x][k] * (1.0f - wash + wash * shaded[k]);
+        ground[k] = pp[x * step][k] * (1.0f - wash + wash * shaded[k]);
     }
     const float ink = std::clamp(l[x], 0.0f, 1.0f);
     // The lines go over the ground in sRGB-encoded values, as SVG and PDF renderers composite,
@@ -215,7 +222,7 @@ cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, co
                       const InkParams& p) {
   const cv::Size size = lines.size();
   expect_image(lines, CV_32FC1, size, "lines");
-  expect_image(paper, CV_32FC3, size, "paper");
+  expect_image(paper, CV_32FC3, paper.size() == cv::Size(1, 1) ? paper.size() : size, "paper");
   const bool has_color = coverage_or_color.type() == CV_8UC4;
   expect_image(coverage_or_color, has_color ? CV_8UC4 : CV_32FC1, size, "coverage or color");
   SYLVA_CHECK(std::isfinite(p.fill) && p.fill >= 0.0f && p.fill <= 1.0f, "ink: fill range");

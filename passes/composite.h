@@ -61,13 +61,14 @@ struct InkParams {
 void bind_ink_params(ParamSet& set, InkParams& p);
 
 // The composite itself (see the header comment). lines: CV_32FC1; coverage_or_color: CV_32FC1
-// or CV_8UC4; paper: CV_32FC3 linear BGR; all the same size. Returns CV_8UC4 BGRA sRGB.
+// or CV_8UC4; paper: CV_32FC3 linear BGR; all the same size, or the paper 1 x 1 for a flat
+// sheet. Returns CV_8UC4 BGRA sRGB.
 cv::Mat composite_ink(const cv::Mat& lines, const cv::Mat& coverage_or_color, const cv::Mat& paper,
                       const InkParams& p);
 
 // Adds the paper pass and the pass "ink-composite"; returns its output "ink" (cv::Mat
 // CV_8UC4 BGRA sRGB). size: the frame's, which the lines and coverage_or_color have (the paper
-// is made at it without waiting for them).
+// is made at it without waiting for them; a flat sheet, without grain, as one pixel).
 ImageHandle add_ink_composite_pass(RenderGraph& g, ImageHandle lines, ImageHandle coverage_or_color,
                                    const InkParams& p, cv::Size size);
 

@@ -174,5 +174,33 @@ TEST(InkComposite, GraphProducesTheFinalImage) {
   EXPECT_EQ(cv::norm(image, direct, cv::NORM_INF), 0.0);
 }
 
+// A flat sheet (no grain) as one pixel composites as the whole sheet does, in every mode, and
+// the pass makes it so; a one-pixel-wide frame too.
+TEST(InkComposite, AFlatSheetAsOnePixelCompositesAsTheWholeSheet) {
+  for (const cv::Size size : {cv::Size(101, 60), cv::Size(1, 7)}) {
+    Inputs in = inputs(size.width, size.height);
+    if (size.width == 1) in.lines.setTo(0.5f);  // the ramp needs two columns
+    InkParams p;
+    p.paper.color = glm::vec3(0.9f, 0.8f, 0.6f);
+    for (const float fill : {0.0f, 0.5f})
+      for (const bool transparent : {false, true}) {
+        p.fill = fill;
+        p.transparent = transparent;
+        const cv::Mat whole = composite_ink(in.lines, in.color, make_paper(size, p.paper), p);
+        const cv::Mat one = composite_ink(in.lines, in.color, make_paper({1, 1}, p.paper), p);
+        EXPECT_EQ(cv::norm(whole, one, cv::NORM_INF), 0.0) << size << fill << transparent;
+      }
+    RenderGraph g;
+    const ImageHandle lines = g.resource<cv::Mat>("edges"), color = g.resource<cv::Mat>("color");
+    g.add_pass("write-edges", {}, {lines}, [&](PassContext& c) { c.write(lines, in.lines); });
+    g.add_pass("write-color", {}, {color}, [&](PassContext& c) { c.write(color, in.color); });
+    const auto out = add_ink_composite_pass(g, lines, color, p, size);
+    g.present(out);
+    g.execute();
+    const cv::Mat direct = composite_ink(in.lines, in.color, make_paper(size, p.paper), p);
+    EXPECT_EQ(cv::norm(g.get<cv::Mat>(out), direct, cv::NORM_INF), 0.0) << size;
+  }
+}
+
 }  // namespace
 }  // namespace sylva::test
