@@ -11,46 +11,20 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/gl/ao_buffers.h"
-#include "core/gl/downsample.h"
 #include "core/gl/gpu_scene.h"
 #include "core/gl/instance_draws.h"
 #include "core/gl/lod_meshes.h"
 #include "core/gl/raster_uniforms.h"
 #include "core/gl/shaders.h"
+#include "core/gl/target_slots.h"
 
 namespace sylva {
 
 namespace {
 
-constexpr int kSlots = 8;  // colour attachments, one per Target in kAllTargets order
 // Framebuffer memory allowed for one render (attachments only; read-back needs about as much
 // again): 4 GiB fits 4096^2 at SSAA 2 with every target.
 constexpr double kMaxFramebufferBytes = 4.0 * (1u << 30);
-
-// Attachment formats: colour is sRGB-encoded by the shader into plain RGBA8 (SSAA decodes
-// it to average in linear light); normals, depth, position and ka are 32-bit float (llvmpipe
-// truncates to half floats, which left normals ~0.1% short); ids are 32-bit unsigned.
-struct SlotFormat {
-  GLenum internal_format;
-  int bytes;  // per sample
-  GLenum read_format;
-  GLenum read_type;
-  int cv_type;
-};
-
-// Indexed by slot (kAllTargets order): colour, normal, depth, position, id, ka, albedo, ao.
-constexpr SlotFormat kSlotFormats[kSlots] = {
-    {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
-    {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
-    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
-    {GL_RGBA32F, 16, GL_RGB, GL_FLOAT, CV_32FC3},
-    {GL_R32UI, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, CV_32SC1},
-    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
-    {GL_RGBA8, 4, GL_BGRA, GL_UNSIGNED_BYTE, CV_8UC4},
-    {GL_R32F, 4, GL_RED, GL_FLOAT, CV_32FC1},
-};
-static_assert(kAllTargets[0] == Target::Color && kAllTargets[5] == Target::Ka &&
-              kAllTargets[6] == Target::Albedo && kAllTargets[7] == Target::Ao);
 
 float srgb_encode(float c) {
   return linear_to_srgb(c);
@@ -143,7 +117,7 @@ struct Rasterizer::Impl {
     for (int i = 0; i < kSlots; ++i) {
       draw_buffers[i] = GL_NONE;
       if (!has(targets, kAllTargets[i])) continue;
-      slot_textures[i] = make_target_texture(kSlotFormats[i].internal_format, width, height);
+      slot_textures[i] = make_target_texture(slot_format(i).internal_format, width, height);
       glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D,
                              slot_textures[i], 0);
       draw_buffers[i] = GL_COLOR_ATTACHMENT0 + i;
@@ -281,53 +255,8 @@ struct Rasterizer::Impl {
     glBindVertexArray(0);
   }
 
-  cv::Mat read_slot(int slot) const {
-    const SlotFormat& f = kSlotFormats[slot];
-    cv::Mat m(fbo_height, fbo_width, f.cv_type);
-    glReadBuffer(GL_COLOR_ATTACHMENT0 + slot);
-    glReadPixels(0, 0, fbo_width, fbo_height, f.read_format, f.read_type, m.data);
-    return m;
-  }
-
-  // Non-zero where a sample is geometry (depth attachment written), at SSAA resolution.
-  cv::Mat read_coverage() const {
-    cv::Mat depth(fbo_height, fbo_width, CV_32FC1);
-    glReadPixels(0, 0, fbo_width, fbo_height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data);
-    cv::Mat coverage;
-    cv::compare(depth, 1.0f, coverage, cv::CMP_LT);
-    return coverage;
-  }
-
   uint32_t material_id(const GpuMesh& m) const {
     return m.material >= 0 ? uint32_t(m.material) + 1 : uint32_t(materials.size()) + 1;
-  }
-
-  GBuffer read_back(TargetMask targets, int ssaa, bool id_samples) const {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    GBuffer out;
-    out.targets = targets;
-    const TargetMask averaged =
-        Target::Normal | Target::Depth | Target::Position | Target::Ka | Target::Ao;
-    cv::Mat coverage;
-    if (ssaa > 1 && (targets & averaged) != 0) coverage = read_coverage();
-    for (int i = 0; i < kSlots; ++i) {
-      const Target t = kAllTargets[i];
-      if (!has(targets, t)) continue;
-      cv::Mat m = read_slot(i);
-      if (t == Target::Color || t == Target::Albedo) {
-        m = downsample_color(m, ssaa);
-      } else if (t == Target::Id) {
-        if (id_samples) cv::flip(m, out.id_samples, 0);
-        m = downsample_id(m, ssaa);
-      } else if (ssaa > 1) {
-        m = downsample_covered(m, coverage, ssaa, t == Target::Normal);
-      }
-      cv::flip(m, m, 0);  // GL's row 0 is the bottom; in place (cv::flip swaps row pairs)
-      target_image(out, t) = m;
-    }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    return out;
   }
 };
 
@@ -459,11 +388,7 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
     throw InputError("--ssaa", "size x ssaa exceeds the GL limit of " + std::to_string(max_size) +
                                    " pixels per side");
   }
-  double bytes = 4.0;  // the depth attachment
-  for (int i = 0; i < kSlots; ++i) {
-    if (has(request.targets, kAllTargets[i])) bytes += kSlotFormats[i].bytes;
-  }
-  bytes *= static_cast<double>(width) * height;
+  const double bytes = framebuffer_bytes(request.targets, width, height);
   if (bytes > kMaxFramebufferBytes) {
     throw InputError("--ssaa", "size x ssaa with these targets needs " +
                                    std::to_string(static_cast<long>(bytes / (1 << 20))) +
@@ -485,7 +410,8 @@ GBuffer Rasterizer::render(const Camera& camera, const Lighting& lighting,
   s.clear(request.background);  // the FBO is bound as the draw framebuffer
   s.draw_meshes(request.targets, camera, lighting, request);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  GBuffer out = s.read_back(request.targets, request.ssaa, request.id_samples);
+  GBuffer out =
+      read_targets(s.fbo, width, height, request.targets, request.ssaa, request.id_samples);
   check_gl_errors("raster pass at " + std::to_string(width) + "x" + std::to_string(height));
   return out;
 }
