@@ -246,10 +246,10 @@ std::vector<Group> clump_groups(const LeafLayer& layer, const cv::Mat& normal, c
 // the clumps.
 constexpr int kWoodLabels = 1 << 24;
 
-// The wood groups: one per connected piece of the wood the front buffer shows, along its
+// The wood groups: one per connected piece of `wood` (the front buffer's wood, 255), along its
 // principal axis; labels after `first`.
-std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regions) {
-  cv::Mat wood = layer.front == kWoodFront, labels, stats, centres;
+std::vector<Group> wood_groups(const cv::Mat& wood, int first, cv::Mat& regions) {
+  cv::Mat labels, stats, centres;
   const int n = cv::connectedComponentsWithStats(wood, labels, stats, centres, 8, CV_32S);
   std::vector<Group> groups;
   std::vector<cv::Vec3d> moments(size_t(std::max(0, n)), cv::Vec3d(0, 0, 0));
@@ -284,8 +284,8 @@ std::vector<Group> wood_groups(const LeafLayer& layer, int first, cv::Mat& regio
 // of their run.
 constexpr int kRankBins = 1 << 16;
 
-cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& color, const cv::Mat& darkness) {
-  const cv::Mat wood = layer.front == kWoodFront;
+cv::Mat wood_rank(const LeafLayer& layer, const cv::Mat& wood, const cv::Mat& color,
+                  const cv::Mat& darkness) {
   cv::Mat rank(layer.front.size(), CV_32FC1, cv::Scalar(0));
   const int n = cv::countNonZero(wood);
   if (n == 0) return rank;
@@ -350,10 +350,11 @@ StrokeDrawing hatch_groups(const LeafLayer& layer, const cv::Mat& normal, const 
   }
   const size_t clumps = groups.size();
   if (what.wood) {
-    const std::vector<Group> wood = wood_groups(layer, kWoodLabels, regions);
-    const cv::Mat wood_tone = tone_of(wood_rank(layer, color, darkness), layer.front == kWoodFront,
-                                      0.5 * detail * scale / f, p);
-    wood_tone.copyTo(tone, layer.front == kWoodFront);
+    const cv::Mat is_wood = layer.front == kWoodFront;
+    const std::vector<Group> wood = wood_groups(is_wood, kWoodLabels, regions);
+    const cv::Mat wood_tone =
+        tone_of(wood_rank(layer, is_wood, color, darkness), is_wood, 0.5 * detail * scale / f, p);
+    wood_tone.copyTo(tone, is_wood);
     groups.insert(groups.end(), wood.begin(), wood.end());
   }
   // Wood is hatched along its axis only: crossing lines on a branch read as a net.
